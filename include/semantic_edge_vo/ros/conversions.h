@@ -1,0 +1,33 @@
+#pragma once
+#include <string>
+
+#include <Eigen/Geometry>
+#include <geometry_msgs/Pose.h>
+#include <sensor_msgs/CameraInfo.h>
+
+#include "semantic_edge_vo/NearestNeighborField.h"
+#include "semantic_edge_vo/SemanticEdgeFrame.h"
+#include "semantic_edge_vo/camera.h"
+#include "semantic_edge_vo/edge_set.h"
+#include "semantic_edge_vo/nearest_neighbor_field.h"
+
+namespace semantic_edge_vo {
+
+/// Intrinsics of a rectified image from its CameraInfo (K). Check the result with validate().
+PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info);
+
+/// Views of the frame's edge arrays (no copy; the message must outlive the view).
+EdgeSetView edgeSetView(const SemanticEdgeFrame& frame);
+/// Moves the edge arrays into the message (no copy).
+void moveEdgesInto(EdgeSet&& edges, SemanticEdgeFrame* frame);
+
+/// Moves a built field into a message (no copy).
+void moveFieldInto(NearestNeighborFieldData&& field, NearestNeighborField* msg);
+/// View of a field message (no copy; the message must outlive the view). Check with validate();
+/// an unknown kind leaves `error` non-empty.
+NearestNeighborFieldView fieldView(const NearestNeighborField& msg, std::string* error);
+
+geometry_msgs::Pose toPoseMsg(const Eigen::Isometry3d& pose);
+Eigen::Isometry3d fromPoseMsg(const geometry_msgs::Pose& pose);
+
+}  // namespace semantic_edge_vo

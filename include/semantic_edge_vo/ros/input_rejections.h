@@ -1,0 +1,32 @@
+#pragma once
+#include <map>
+#include <string>
+
+#include <ros/time.h>
+
+namespace semantic_edge_vo {
+
+/// Refused inputs: every refusal is counted and logged as a named error, throttled per reason so
+/// that one bad stream does not hide another and does not flood the log.
+class InputRejections {
+ public:
+  InputRejections(std::string owner, double throttle_seconds = 5.0)
+      : owner_(std::move(owner)), throttle_seconds_(throttle_seconds) {}
+
+  /// Logs "<owner>: dropped <what>: <reason_name>: <detail>" at most once per throttle period per reason.
+  void reject(const std::string& what, const std::string& reason_name, const std::string& detail);
+  unsigned long total() const { return total_; }
+
+ private:
+  struct Reason {
+    ros::WallTime last_logged;
+    unsigned long count = 0;
+    unsigned long logged_at_count = 0;
+  };
+  std::string owner_;
+  double throttle_seconds_;
+  std::map<std::string, Reason> reasons_;
+  unsigned long total_ = 0;
+};
+
+}  // namespace semantic_edge_vo

@@ -1,0 +1,20 @@
+#pragma once
+#include <string>
+
+#include "semantic_edge_vo/canny_edge_detector.h"
+#include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/nearest_neighbor_field.h"
+#include "semantic_edge_vo/point_sampler.h"
+#include "semantic_edge_vo/ros/parameter_loader.h"
+
+namespace semantic_edge_vo {
+
+// Each loader reads one options struct from the nodelet's private parameters (names as in
+// config/*.yaml and the README) and returns the validation error, empty when the options are usable.
+std::string loadCannyOptions(ParameterLoader* loader, CannyOptions* options);
+std::string loadPointSamplerOptions(ParameterLoader* loader, PointSamplerOptions* options);
+std::string loadFieldOptions(ParameterLoader* loader, FieldOptions* options);
+/// Reads the class table from `classes` (a list of {name, id, rgb: [r, g, b]}); Cityscapes when absent.
+std::string loadClassTable(const ros::NodeHandle& node, ClassTable* table);
+
+}  // namespace semantic_edge_vo

@@ -1,0 +1,62 @@
+// NearestNeighborField: SemanticEdgeFrame -> NearestNeighborField (ANNF, ONNF or SNNF, all levels).
+#include <nodelet/nodelet.h>
+#include <pluginlib/class_list_macros.hpp>
+
+#include "semantic_edge_vo/NearestNeighborField.h"
+#include "semantic_edge_vo/SemanticEdgeFrame.h"
+#include "semantic_edge_vo/nearest_neighbor_field.h"
+#include "semantic_edge_vo/ros/conversions.h"
+#include "semantic_edge_vo/ros/input_rejections.h"
+#include "semantic_edge_vo/ros/message_tracer.h"
+#include "semantic_edge_vo/ros/options_loading.h"
+
+namespace semantic_edge_vo {
+
+class NearestNeighborFieldNodelet : public nodelet::Nodelet {
+ private:
+  void onInit() override {
+    ros::NodeHandle& node = getNodeHandle();
+    ParameterLoader loader(getPrivateNodeHandle());
+    const std::string error = loadFieldOptions(&loader, &options_);
+    NODELET_INFO_STREAM("parameters:" << loader.summary());
+    if (!error.empty()) {
+      NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
+      return;
+    }
+    rejections_ = std::make_unique<InputRejections>(getName());
+    tracer_.init(node, getPrivateNodeHandle(), getName());
+    field_publisher_ = node.advertise<NearestNeighborField>("nn_field", 5);
+    frame_subscriber_ = node.subscribe("edge_frame", 5, &NearestNeighborFieldNodelet::onFrame, this);
+  }
+
+  void onFrame(const SemanticEdgeFrameConstPtr& frame) {
+    tracer_.received(frame_subscriber_.getTopic(), frame.get(), frame->header.stamp);
+    const EdgeSetView edges = edgeSetView(*frame);
+    if (!edges.consistent()) {
+      rejections_->reject("edge frame", "inconsistent_edge_arrays", "the edge arrays differ in length");
+      return;
+    }
+    if (frame->class_names.size() > 32) {
+      rejections_->reject("edge frame", "too_many_classes",
+                          std::to_string(frame->class_names.size()) + " classes, a class mask holds 32");
+      return;
+    }
+    auto field = boost::make_shared<NearestNeighborField>();
+    field->header = frame->header;
+    moveFieldInto(buildNearestNeighborField(edges, static_cast<int>(frame->image.width),
+                                            static_cast<int>(frame->image.height), frame->class_names, options_),
+                  field.get());
+    field_publisher_.publish(NearestNeighborFieldConstPtr(field));
+    tracer_.published(field_publisher_, field.get(), field->header.stamp);
+  }
+
+  FieldOptions options_;
+  std::unique_ptr<InputRejections> rejections_;
+  MessageTracer tracer_;
+  ros::Publisher field_publisher_;
+  ros::Subscriber frame_subscriber_;
+};
+
+}  // namespace semantic_edge_vo
+
+PLUGINLIB_EXPORT_CLASS(semantic_edge_vo::NearestNeighborFieldNodelet, nodelet::Nodelet)

@@ -1,0 +1,92 @@
+#include "semantic_edge_vo/ros/conversions.h"
+
+#include <tf2_eigen/tf2_eigen.h>
+
+namespace semantic_edge_vo {
+
+PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info) {
+  PinholeCamera camera;
+  camera.fx = info.K[0];
+  camera.fy = info.K[4];
+  camera.cx = info.K[2];
+  camera.cy = info.K[5];
+  camera.width = static_cast<int>(info.width);
+  camera.height = static_cast<int>(info.height);
+  return camera;
+}
+
+EdgeSetView edgeSetView(const SemanticEdgeFrame& frame) {
+  return {frame.edge_u, frame.edge_v, frame.edge_normal_x, frame.edge_normal_y, frame.edge_strength,
+          frame.edge_class_mask};
+}
+
+void moveEdgesInto(EdgeSet&& edges, SemanticEdgeFrame* frame) {
+  frame->edge_u = std::move(edges.u);
+  frame->edge_v = std::move(edges.v);
+  frame->edge_normal_x = std::move(edges.normal_x);
+  frame->edge_normal_y = std::move(edges.normal_y);
+  frame->edge_strength = std::move(edges.strength);
+  frame->edge_class_mask = std::move(edges.class_mask);
+}
+
+void moveFieldInto(NearestNeighborFieldData&& field, NearestNeighborField* msg) {
+  msg->kind = toString(field.kind);
+  msg->num_layers = static_cast<std::uint32_t>(field.num_layers);
+  msg->orientation_bins = static_cast<std::uint32_t>(field.orientation_bins);
+  msg->layer_names = std::move(field.layer_names);
+  msg->truncation_radius = field.truncation_radius;
+  msg->levels.resize(field.levels.size());
+  for (std::size_t l = 0; l < field.levels.size(); ++l) {
+    FieldLevelData& from = field.levels[l];
+    NearestNeighborFieldLevel& to = msg->levels[l];
+    to.scale = from.scale;
+    to.width = static_cast<std::uint32_t>(from.width);
+    to.height = static_cast<std::uint32_t>(from.height);
+    to.cell_size = static_cast<std::uint32_t>(from.cell_size);
+    to.grid_cols = static_cast<std::uint32_t>(from.grid_cols);
+    to.grid_rows = static_cast<std::uint32_t>(from.grid_rows);
+    to.seed_u = std::move(from.seed_u);
+    to.seed_v = std::move(from.seed_v);
+    to.seed_normal_x = std::move(from.seed_normal_x);
+    to.seed_normal_y = std::move(from.seed_normal_y);
+    to.seed_edge = std::move(from.seed_edge);
+    to.cell_start = std::move(from.cell_start);
+    to.entry_seed = std::move(from.entry_seed);
+  }
+}
+
+NearestNeighborFieldView fieldView(const NearestNeighborField& msg, std::string* error) {
+  NearestNeighborFieldView view;
+  if (!parseFieldKind(msg.kind, &view.kind)) *error = "unknown field kind '" + msg.kind + "'";
+  view.num_layers = static_cast<int>(msg.num_layers);
+  view.orientation_bins = static_cast<int>(msg.orientation_bins);
+  view.truncation_radius = msg.truncation_radius;
+  for (const auto& level : msg.levels) {
+    FieldLevelView v;
+    v.scale = level.scale;
+    v.width = static_cast<int>(level.width);
+    v.height = static_cast<int>(level.height);
+    v.cell_size = static_cast<int>(level.cell_size);
+    v.grid_cols = static_cast<int>(level.grid_cols);
+    v.grid_rows = static_cast<int>(level.grid_rows);
+    v.seed_u = level.seed_u;
+    v.seed_v = level.seed_v;
+    v.seed_normal_x = level.seed_normal_x;
+    v.seed_normal_y = level.seed_normal_y;
+    v.seed_edge = level.seed_edge;
+    v.cell_start = level.cell_start;
+    v.entry_seed = level.entry_seed;
+    view.levels.push_back(v);
+  }
+  return view;
+}
+
+geometry_msgs::Pose toPoseMsg(const Eigen::Isometry3d& pose) { return tf2::toMsg(pose); }
+
+Eigen::Isometry3d fromPoseMsg(const geometry_msgs::Pose& pose) {
+  Eigen::Isometry3d result;
+  tf2::fromMsg(pose, result);
+  return result;
+}
+
+}  // namespace semantic_edge_vo

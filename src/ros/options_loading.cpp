@@ -1,0 +1,58 @@
+#include "semantic_edge_vo/ros/options_loading.h"
+
+#include <xmlrpcpp/XmlRpcValue.h>
+
+namespace semantic_edge_vo {
+
+std::string loadCannyOptions(ParameterLoader* loader, CannyOptions* options) {
+  loader->load("canny/blur_sigma", &options->blur_sigma, "px");
+  loader->load("canny/low_threshold", &options->low_threshold, "Sobel gradient units");
+  loader->load("canny/high_threshold", &options->high_threshold, "Sobel gradient units");
+  loader->load("canny/border", &options->border, "px");
+  return options->validate();
+}
+
+std::string loadPointSamplerOptions(ParameterLoader* loader, PointSamplerOptions* options) {
+  loader->load("sampler/max_edge_points", &options->max_edge_points, "points");
+  loader->load("sampler/min_support_points", &options->min_support_points, "points");
+  loader->load("sampler/support_block_size", &options->support_block_size, "px");
+  loader->load("sampler/support_threshold_offset", &options->support_threshold_offset, "gray levels/px");
+  loader->load("sampler/support_min_distance", &options->support_min_distance, "px");
+  return options->validate();
+}
+
+std::string loadFieldOptions(ParameterLoader* loader, FieldOptions* options) {
+  std::string kind = toString(options->kind);
+  loader->load("field/kind", &kind, "(annf | onnf | snnf)");
+  if (!parseFieldKind(kind, &options->kind)) return "field/kind must be annf, onnf or snnf (got '" + kind + "')";
+  loader->load("field/pyramid_levels", &options->pyramid_levels, "levels");
+  loader->load("field/orientation_bins", &options->orientation_bins, "bins");
+  loader->load("field/truncation_radius", &options->truncation_radius, "px of each level");
+  loader->load("field/cell_size", &options->cell_size, "px");
+  return options->validate();
+}
+
+std::string loadClassTable(const ros::NodeHandle& node, ClassTable* table) {
+  XmlRpc::XmlRpcValue list;
+  if (!node.getParam("classes", list)) {
+    *table = ClassTable::cityscapes();
+    return table->validate();
+  }
+  if (list.getType() != XmlRpc::XmlRpcValue::TypeArray) return "classes must be a list of {name, id, rgb}";
+  std::vector<SemanticClass> classes;
+  for (int i = 0; i < list.size(); ++i) {
+    XmlRpc::XmlRpcValue& entry = list[i];
+    if (entry.getType() != XmlRpc::XmlRpcValue::TypeStruct || !entry.hasMember("name") || !entry.hasMember("id") ||
+        !entry.hasMember("rgb") || entry["rgb"].getType() != XmlRpc::XmlRpcValue::TypeArray || entry["rgb"].size() != 3)
+      return "classes[" + std::to_string(i) + "] must be {name: string, id: int, rgb: [r, g, b]}";
+    SemanticClass c;
+    c.name = static_cast<std::string>(entry["name"]);
+    c.id = static_cast<int>(entry["id"]);
+    for (int k = 0; k < 3; ++k) c.rgb[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(static_cast<int>(entry["rgb"][k]));
+    classes.push_back(c);
+  }
+  *table = ClassTable(std::move(classes));
+  return table->validate();
+}
+
+}  // namespace semantic_edge_vo

@@ -1,0 +1,70 @@
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "semantic_edge_vo/canny_edge_detector.h"
+#include "semantic_edge_vo/point_sampler.h"
+#include "semantic_edge_vo/test_pattern.h"
+
+namespace semantic_edge_vo {
+namespace {
+
+/// A vertical step edge between columns, blurred, at a known subpixel column.
+cv::Mat stepImage(double edge_column, int width = 80, int height = 60) {
+  cv::Mat image(height, width, CV_32F);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      // Area-sampled step: the fraction of pixel [x-0.5, x+0.5] right of the edge.
+      const double covered = std::clamp(x + 0.5 - edge_column, 0.0, 1.0);
+      image.at<float>(y, x) = static_cast<float>(50.0 + 150.0 * covered);
+    }
+  cv::GaussianBlur(image, image, cv::Size(0, 0), 1.2);
+  cv::Mat gray;
+  image.convertTo(gray, CV_8U);
+  return gray;
+}
+
+TEST(CannyEdgeDetector, SubpixelPositionAndNormalOfAStepEdge) {
+  CannyOptions options;
+  options.blur_sigma = 0.0;
+  for (double column : {30.0, 30.25, 30.5, 30.75}) {
+    const EdgeSet edges = CannyEdgeDetector(options).detect(stepImage(column), 4u);
+    ASSERT_GT(edges.size(), 40u) << "column " << column;
+    double mean_u = 0.0;
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      mean_u += edges.u[i];
+      EXPECT_NEAR(edges.normal_x[i], 1.0f, 1e-3f);  // dark to bright: +x
+      EXPECT_EQ(edges.class_mask[i], 4u);
+      EXPECT_GT(edges.strength[i], 0.0f);
+      EXPECT_LE(edges.strength[i], 1.0f);
+    }
+    mean_u /= static_cast<double>(edges.size());
+    // The step between pixel centres c-0.5 and c+0.5 has its gradient peak at c - 0.5 (pixel-centre convention).
+    EXPECT_NEAR(mean_u, column - 0.5, 0.15) << "column " << column;
+  }
+}
+
+TEST(PointSampler, SpreadsEdgesAndAddsSupportWhereEdgesAreScarce) {
+  const cv::Mat gray = renderTestPattern(3, 640, 360);
+  const EdgeSet edges = CannyEdgeDetector(CannyOptions()).detect(gray);
+  PointSamplerOptions options;
+  options.max_edge_points = 500;
+  options.min_support_points = 200;
+  const PointSample sample = PointSampler(options).sample(gray, edges.view());
+  ASSERT_EQ(sample.edge_indices.size(), 500u);
+  EXPECT_GT(sample.support_u.size(), 100u);
+  EXPECT_LE(sample.support_u.size(), 200u);
+  // Well spread: the sample reaches every quarter of the image.
+  int quarters[4] = {0, 0, 0, 0};
+  for (std::uint32_t i : sample.edge_indices) ++quarters[(edges.u[i] > 320) + 2 * (edges.v[i] > 180)];
+  for (int q : quarters) EXPECT_GT(q, 50);
+
+  options.max_edge_points = static_cast<int>(edges.size()) + 300;  // edges are scarce: 300 short
+  const PointSample more = PointSampler(options).sample(gray, edges.view());
+  EXPECT_EQ(more.edge_indices.size(), edges.size());
+  EXPECT_GT(more.support_u.size(), sample.support_u.size());
+}
+
+}  // namespace
+}  // namespace semantic_edge_vo

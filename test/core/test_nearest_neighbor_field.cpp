@@ -1,0 +1,115 @@
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "semantic_edge_vo/nearest_neighbor_field.h"
+
+namespace semantic_edge_vo {
+namespace {
+
+EdgeSet randomEdges(int n, int width, int height, int num_classes, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, width - 1.0f), v(0.0f, height - 1.0f), angle(-3.14159f, 3.14159f);
+  std::uniform_int_distribution<std::uint32_t> mask(1u, (1u << num_classes) - 1u);
+  EdgeSet edges;
+  for (int i = 0; i < n; ++i) {
+    const float a = angle(rng);
+    edges.push_back(u(rng), v(rng), std::cos(a), std::sin(a), 1.0f, mask(rng));
+  }
+  return edges;
+}
+
+/// The layers an edge seeds, computed independently of the field's code.
+bool inLayer(const EdgeSet& edges, std::size_t i, FieldKind kind, int layer, int bins) {
+  if (kind == FieldKind::kAnnf) return true;
+  if (kind == FieldKind::kSnnf) return (edges.class_mask[i] >> layer) & 1u;
+  double angle = std::atan2(edges.normal_y[i], edges.normal_x[i]) * 180.0 / M_PI;
+  if (angle < 0) angle += 360.0;
+  return static_cast<int>(angle / (360.0 / bins)) % bins == layer;
+}
+
+class FieldAgainstBruteForce : public ::testing::TestWithParam<FieldKind> {};
+
+TEST_P(FieldAgainstBruteForce, NearestIsExactAtEveryLevelAndLayer) {
+  const int width = 320, height = 200, classes = 5;
+  const EdgeSet edges = randomEdges(600, width, height, classes, 42);
+  FieldOptions options;
+  options.kind = GetParam();
+  options.pyramid_levels = 3;
+  options.orientation_bins = 8;
+  options.truncation_radius = 25.0f;
+  options.cell_size = 6;
+  std::vector<std::string> names(classes, "c");
+  const NearestNeighborFieldData data = buildNearestNeighborField(edges.view(), width, height, names, options);
+  const NearestNeighborFieldView field = data.view();
+  ASSERT_EQ(field.validate(), "");
+
+  std::mt19937 rng(7);
+  int found = 0, checked = 0;
+  for (int level = 0; level < options.pyramid_levels; ++level) {
+    const float scale = field.levels[static_cast<std::size_t>(level)].scale;
+    std::uniform_real_distribution<float> qx(-20.0f, width * scale + 20.0f), qy(-20.0f, height * scale + 20.0f);
+    for (int layer = 0; layer < field.num_layers; ++layer) {
+      for (int q = 0; q < 300; ++q) {
+        const float x = qx(rng), y = qy(rng);
+        float best = std::numeric_limits<float>::max();
+        for (std::size_t i = 0; i < edges.size(); ++i) {
+          if (!inLayer(edges, i, options.kind, layer, options.orientation_bins)) continue;
+          best = std::min(best, std::hypot(toLevel(edges.u[i], scale) - x, toLevel(edges.v[i], scale) - y));
+        }
+        FieldMatch match;
+        const bool hit = field.nearest(level, layer, x, y, &match);
+        ++checked;
+        if (best <= options.truncation_radius) {
+          ASSERT_TRUE(hit) << "level " << level << " layer " << layer << " query " << x << "," << y;
+          EXPECT_NEAR(match.distance, best, 1e-4f);
+          EXPECT_NEAR(std::hypot(match.u - x, match.v - y), best, 1e-4f);
+          EXPECT_TRUE(inLayer(edges, match.edge, options.kind, layer, options.orientation_bins));
+          EXPECT_EQ(match.normal_x, edges.normal_x[match.edge]);
+          ++found;
+        } else {
+          EXPECT_FALSE(hit) << "found a seed beyond the truncation radius";
+        }
+      }
+    }
+  }
+  EXPECT_GT(found, checked / 4) << "the test should mostly exercise hits";
+}
+
+INSTANTIATE_TEST_SUITE_P(AllKinds, FieldAgainstBruteForce,
+                         ::testing::Values(FieldKind::kAnnf, FieldKind::kOnnf, FieldKind::kSnnf),
+                         [](const auto& info) { return std::string(toString(info.param)); });
+
+TEST(NearestNeighborField, MultiClassPixelSeedsEachOfItsClassLayers) {
+  EdgeSet edges;
+  edges.push_back(10.0f, 10.0f, 1.0f, 0.0f, 1.0f, 0b101u);  // classes 0 and 2
+  FieldOptions options;
+  options.pyramid_levels = 1;
+  const auto data = buildNearestNeighborField(edges.view(), 64, 64, {"a", "b", "c"}, options);
+  const auto field = data.view();
+  FieldMatch match;
+  EXPECT_TRUE(field.nearest(0, 0, 12.0f, 10.0f, &match));
+  EXPECT_FALSE(field.nearest(0, 1, 12.0f, 10.0f, &match));
+  EXPECT_TRUE(field.nearest(0, 2, 12.0f, 10.0f, &match));
+  EXPECT_FLOAT_EQ(match.distance, 2.0f);
+}
+
+TEST(NearestNeighborField, ValidateCatchesCorruptArrays) {
+  EdgeSet edges;
+  edges.push_back(3.0f, 4.0f, 0.0f, 1.0f, 1.0f, 1u);
+  auto data = buildNearestNeighborField(edges.view(), 32, 32, {"a"}, FieldOptions());
+  data.levels[0].entry_seed[0] = 99;
+  EXPECT_NE(data.view().validate(), "");
+}
+
+TEST(FieldOptions, RejectsNonsense) {
+  FieldOptions options;
+  EXPECT_EQ(options.validate(), "");
+  options.truncation_radius = 0.0f;
+  EXPECT_NE(options.validate(), "");
+}
+
+}  // namespace
+}  // namespace semantic_edge_vo

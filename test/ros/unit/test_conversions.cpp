@@ -1,0 +1,58 @@
+#include <gtest/gtest.h>
+
+#include "semantic_edge_vo/ros/conversions.h"
+
+namespace semantic_edge_vo {
+namespace {
+
+TEST(Conversions, FieldSurvivesTheMessageWithoutCopies) {
+  EdgeSet edges;
+  edges.push_back(10.0f, 20.0f, 0.6f, 0.8f, 1.0f, 0b11u);
+  edges.push_back(40.0f, 25.0f, -1.0f, 0.0f, 0.5f, 0b10u);
+  FieldOptions options;
+  options.pyramid_levels = 2;
+  auto data = buildNearestNeighborField(edges.view(), 64, 48, {"a", "b"}, options);
+  const float* seeds_before = data.levels[0].seed_u.data();
+  NearestNeighborField msg;
+  moveFieldInto(std::move(data), &msg);
+  EXPECT_EQ(msg.levels[0].seed_u.data(), seeds_before) << "moved, not copied";
+
+  std::string error;
+  const NearestNeighborFieldView view = fieldView(msg, &error);
+  ASSERT_EQ(error, "");
+  ASSERT_EQ(view.validate(), "");
+  EXPECT_EQ(view.levels[0].seed_u.data(), msg.levels[0].seed_u.data()) << "a view, not a copy";
+  FieldMatch match;
+  ASSERT_TRUE(view.nearest(0, 1, 38.0f, 25.0f, &match));
+  EXPECT_EQ(match.edge, 1u);
+  ASSERT_TRUE(view.nearest(0, 0, 38.0f, 25.0f, &match));
+  EXPECT_EQ(match.edge, 0u);
+}
+
+TEST(Conversions, UnknownFieldKindIsAnError) {
+  NearestNeighborField msg;
+  msg.kind = "bogus";
+  std::string error;
+  fieldView(msg, &error);
+  EXPECT_NE(error, "");
+}
+
+TEST(Conversions, CameraFromInfoAndPoseRoundTrip) {
+  sensor_msgs::CameraInfo info;
+  info.width = 1241;
+  info.height = 376;
+  info.K = {718.856, 0, 607.19, 0, 718.856, 185.22, 0, 0, 1};
+  const PinholeCamera camera = cameraFromInfo(info);
+  EXPECT_EQ(camera.validate(), "");
+  EXPECT_DOUBLE_EQ(camera.cx, 607.19);
+  info.K.fill(0.0);
+  EXPECT_NE(cameraFromInfo(info).validate(), "");
+
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.rotate(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()));
+  pose.translation() << 1, -2, 3;
+  EXPECT_TRUE(fromPoseMsg(toPoseMsg(pose)).isApprox(pose, 1e-12));
+}
+
+}  // namespace
+}  // namespace semantic_edge_vo
