@@ -118,7 +118,8 @@ void PointSampler::sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, 
   for (int by = 0; by < block_rows; ++by) {
     for (int bx = 0; bx < block_cols; ++bx) {
       const cv::Rect block_rect = cv::Rect(bx * block, by * block, block, block) & cv::Rect(0, 0, gray.cols, gray.rows);
-      block_values.assign(magnitude(block_rect).begin<float>(), magnitude(block_rect).end<float>());
+      const cv::Mat block_magnitude = magnitude(block_rect);
+      block_values.assign(block_magnitude.begin<float>(), block_magnitude.end<float>());
       const float threshold = median(&block_values) + static_cast<float>(options_.support_threshold_offset);
       const bool scarce = sampled_edges_in_block[static_cast<std::size_t>(by * block_cols + bx)] == 0;
       for (int sy = block_rect.y; sy < block_rect.br().y; sy += sub) {

@@ -40,13 +40,20 @@ TEST(CannyEdgeDetector, SubpixelPositionAndNormalOfAStepEdge) {
       EXPECT_LE(edges.strength[i], 1.0f);
     }
     mean_u /= static_cast<double>(edges.size());
-    // The step between pixel centres c-0.5 and c+0.5 has its gradient peak at c - 0.5 (pixel-centre convention).
-    EXPECT_NEAR(mean_u, column - 0.5, 0.15) << "column " << column;
+    // Pixel x covers [x - 0.5, x + 0.5]: the step's half-intensity point, the gradient peak, is at `column`.
+    EXPECT_NEAR(mean_u, column, 0.05) << "column " << column;
   }
 }
 
 TEST(PointSampler, SpreadsEdgesAndAddsSupportWhereEdgesAreScarce) {
-  const cv::Mat gray = renderTestPattern(3, 640, 360);
+  // The test pattern's flat shapes plus smooth texture, so that supportive pixels exist off the edges.
+  cv::Mat texture(360, 640, CV_32F);
+  cv::randn(texture, 0.0, 60.0);
+  cv::GaussianBlur(texture, texture, cv::Size(0, 0), 1.2);
+  cv::Mat gray;
+  cv::Mat pattern;
+  renderTestPattern(3, 640, 360).convertTo(pattern, CV_32F);
+  cv::Mat(pattern + texture).convertTo(gray, CV_8U);
   const EdgeSet edges = CannyEdgeDetector(CannyOptions()).detect(gray);
   PointSamplerOptions options;
   options.max_edge_points = 500;

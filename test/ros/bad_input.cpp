@@ -1,0 +1,156 @@
+// rostest: each kind of bad input is refused with a named error on /rosout, and the good frames
+// that follow still flow through to odometry.
+#include <functional>
+#include <mutex>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <nav_msgs/Odometry.h>
+#include <opencv2/core.hpp>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Log.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+
+#include "semantic_edge_vo/SemanticEdgeFrame.h"
+#include "semantic_edge_vo/test_pattern.h"
+
+namespace semantic_edge_vo {
+namespace {
+
+constexpr int kWidth = 320, kHeight = 240;
+
+struct Frame {
+  sensor_msgs::Image image;
+  sensor_msgs::CameraInfo info;
+};
+
+Frame goodFrame(const ros::Time& stamp, int index) {
+  Frame frame;
+  frame.image.header.stamp = stamp;
+  frame.image.header.frame_id = "camera_optical_frame";
+  frame.image.width = kWidth;
+  frame.image.height = kHeight;
+  frame.image.encoding = "mono8";
+  frame.image.step = kWidth;
+  const cv::Mat pattern = renderTestPattern(index, kWidth, kHeight);
+  frame.image.data.assign(pattern.data, pattern.data + pattern.total());
+  frame.info.header = frame.image.header;
+  frame.info.width = kWidth;
+  frame.info.height = kHeight;
+  frame.info.K = {300, 0, 160, 0, 300, 120, 0, 0, 1};
+  frame.info.P = {300, 0, 160, 0, 0, 300, 120, 0, 0, 0, 1, 0};
+  return frame;
+}
+
+class BadInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    image_publisher_ = node_.advertise<sensor_msgs::Image>("/camera/image_rect", 10);
+    info_publisher_ = node_.advertise<sensor_msgs::CameraInfo>("/camera/camera_info", 10);
+    log_subscriber_ = node_.subscribe<rosgraph_msgs::Log>("/rosout", 100, [this](const rosgraph_msgs::LogConstPtr& log) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (log->level >= rosgraph_msgs::Log::ERROR) errors_.push_back(log->msg);
+    });
+    odometry_subscriber_ = node_.subscribe<nav_msgs::Odometry>("/odometry", 100, [this](const nav_msgs::OdometryConstPtr& o) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      odometry_stamps_.insert(o->header.stamp);
+    });
+    spinner_.start();
+    // Wait until the intake subscribes to both topics.
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20.0);
+    while ((image_publisher_.getNumSubscribers() == 0 || info_publisher_.getNumSubscribers() == 0) &&
+           ros::WallTime::now() < deadline)
+      ros::WallDuration(0.1).sleep();
+    ASSERT_GT(image_publisher_.getNumSubscribers(), 0u) << "EdgeIntake never subscribed";
+    ros::WallDuration(1.0).sleep();
+    stamp_ = ros::Time::now();
+  }
+
+  void publish(const Frame& frame) {
+    image_publisher_.publish(frame.image);
+    info_publisher_.publish(frame.info);
+    ros::WallDuration(0.15).sleep();
+  }
+  ros::Time nextStamp() { return stamp_ += ros::Duration(0.1); }
+
+  /// Sends a good frame and waits for its odometry.
+  bool goodFrameFlows() {
+    const ros::Time stamp = nextStamp();
+    publish(goodFrame(stamp, ++index_));
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(5.0);
+    while (ros::WallTime::now() < deadline) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (odometry_stamps_.count(stamp)) return true;
+      }
+      ros::WallDuration(0.05).sleep();
+    }
+    return false;
+  }
+
+  /// Waits for an error log naming `reason`.
+  bool errorLogged(const std::string& reason) {
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(5.0);
+    while (ros::WallTime::now() < deadline) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        for (const std::string& message : errors_)
+          if (message.find(reason) != std::string::npos && message.find("dropped") != std::string::npos) return true;
+      }
+      ros::WallDuration(0.05).sleep();
+    }
+    return false;
+  }
+
+  ros::NodeHandle node_;
+  ros::AsyncSpinner spinner_{2};
+  ros::Publisher image_publisher_, info_publisher_;
+  ros::Subscriber log_subscriber_, odometry_subscriber_;
+  std::mutex mutex_;
+  std::vector<std::string> errors_;
+  std::set<ros::Time> odometry_stamps_;
+  ros::Time stamp_;
+  int index_ = 0;
+};
+
+TEST_F(BadInput, EachIsRefusedByNameAndGoodFramesStillFlow) {
+  ASSERT_TRUE(goodFrameFlows()) << "a good frame must flow before the bad ones";
+
+  struct Case {
+    std::string reason;
+    std::function<void(Frame*)> spoil;
+  };
+  const std::vector<Case> cases = {
+      {"unsupported_encoding", [](Frame* f) { f->image.encoding = "32FC1"; }},
+      {"size_mismatch", [](Frame* f) { f->info.width = kWidth / 2; }},
+      {"invalid_camera_info", [](Frame* f) { f->info.K.fill(0.0); }},
+      {"empty_image", [](Frame* f) {
+         f->image.width = f->image.height = f->image.step = 0;
+         f->image.data.clear();
+         f->info.width = f->info.height = 0;
+       }},
+      {"malformed_image", [](Frame* f) { f->image.data.resize(100); }},
+  };
+  for (const Case& c : cases) {
+    Frame frame = goodFrame(nextStamp(), ++index_);
+    c.spoil(&frame);
+    publish(frame);
+    EXPECT_TRUE(errorLogged(c.reason)) << "no named error for " << c.reason;
+    EXPECT_TRUE(goodFrameFlows()) << "good frames stopped flowing after " << c.reason;
+  }
+
+  // Stamps going backwards: a frame older than the last accepted one.
+  publish(goodFrame(stamp_ - ros::Duration(0.05), ++index_));
+  EXPECT_TRUE(errorLogged("stamp_not_increasing"));
+  EXPECT_TRUE(goodFrameFlows()) << "good frames stopped flowing after a backwards stamp";
+}
+
+}  // namespace
+}  // namespace semantic_edge_vo
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "bad_input_test");
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,157 @@
+// rostest: messages flow through every stage at the input rate, zero-copy, with correct frames and stamps.
+#include <map>
+#include <mutex>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <nav_msgs/Odometry.h>
+#include <nav_msgs/Path.h>
+#include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include "semantic_edge_vo/KeyframeMap.h"
+#include "semantic_edge_vo/MessageTrace.h"
+#include "semantic_edge_vo/NearestNeighborField.h"
+#include "semantic_edge_vo/SemanticEdgeFrame.h"
+#include "semantic_edge_vo/TrackedFrame.h"
+#include "semantic_edge_vo/TrackingStatus.h"
+
+namespace semantic_edge_vo {
+namespace {
+
+/// Stamps seen per topic, and the last message of a few topics, collected over a window.
+class Recorder {
+ public:
+  template <typename M>
+  void listen(ros::NodeHandle& node, const std::string& topic) {
+    subscribers_.push_back(node.subscribe<M>(topic, 50, [this, topic](const boost::shared_ptr<const M>& m) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stamps_[topic].insert(m->header.stamp);
+      last_header_[topic] = m->header;
+    }));
+  }
+  std::set<ros::Time> stamps(const std::string& topic) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return stamps_[topic];
+  }
+  std_msgs::Header lastHeader(const std::string& topic) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return last_header_[topic];
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<ros::Subscriber> subscribers_;
+  std::map<std::string, std::set<ros::Time>> stamps_;
+  std::map<std::string, std_msgs::Header> last_header_;
+};
+
+double rateOf(const std::set<ros::Time>& stamps) {
+  if (stamps.size() < 2) return 0.0;
+  return (stamps.size() - 1) / (*stamps.rbegin() - *stamps.begin()).toSec();
+}
+
+TEST(GraphFlow, EveryStageAtInputRateZeroCopyWithStampedTf) {
+  ros::NodeHandle node;
+  Recorder recorder;
+  recorder.listen<sensor_msgs::Image>(node, "/camera/image_rect");
+  recorder.listen<SemanticEdgeFrame>(node, "/edge_frame");
+  recorder.listen<NearestNeighborField>(node, "/nn_field");
+  recorder.listen<nav_msgs::Odometry>(node, "/odometry");
+  recorder.listen<TrackingStatus>(node, "/tracking_status");
+  recorder.listen<TrackedFrame>(node, "/tracked_frame");
+  recorder.listen<KeyframeMap>(node, "/keyframe_map");
+  recorder.listen<nav_msgs::Path>(node, "/path");
+  recorder.listen<sensor_msgs::PointCloud2>(node, "/semantic_edge_map");
+
+  std::mutex trace_mutex;
+  std::vector<MessageTrace> traces;
+  ros::Subscriber trace_subscriber = node.subscribe<MessageTrace>("/message_trace", 1000, [&](const MessageTraceConstPtr& t) {
+    std::lock_guard<std::mutex> lock(trace_mutex);
+    traces.push_back(*t);
+  });
+  tf2_ros::Buffer tf_buffer(ros::Duration(60.0));
+  tf2_ros::TransformListener tf_listener(tf_buffer);
+  sensor_msgs::PointCloud2ConstPtr cloud;
+  ros::Subscriber cloud_subscriber = node.subscribe<sensor_msgs::PointCloud2>(
+      "/semantic_edge_map", 1, [&](const sensor_msgs::PointCloud2ConstPtr& c) { cloud = c; });
+
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  // Wait for the first odometry (graph up), then record a window.
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20.0);
+  while (recorder.stamps("/odometry").empty() && ros::WallTime::now() < deadline) ros::WallDuration(0.1).sleep();
+  ASSERT_FALSE(recorder.stamps("/odometry").empty()) << "no odometry within 20 s: the graph did not come up";
+  ros::WallDuration(6.0).sleep();
+
+  // 1. Every stage runs at the input rate and processes every input frame of the window.
+  const std::set<ros::Time> inputs = recorder.stamps("/camera/image_rect");
+  const double input_rate = rateOf(inputs);
+  EXPECT_NEAR(input_rate, 10.0, 1.5);
+  const ros::Time first_output = *recorder.stamps("/odometry").begin();
+  for (const std::string topic : {"/edge_frame", "/nn_field", "/odometry", "/tracking_status", "/tracked_frame"}) {
+    const std::set<ros::Time> outputs = recorder.stamps(topic);
+    EXPECT_NEAR(rateOf(outputs), input_rate, 0.1 * input_rate) << topic;
+    int missing = 0;
+    for (const ros::Time& stamp : inputs)
+      if (stamp > first_output && stamp < *inputs.rbegin() && !outputs.count(stamp)) ++missing;
+    EXPECT_EQ(missing, 0) << topic << " lost input frames";
+  }
+  EXPECT_FALSE(recorder.stamps("/keyframe_map").empty());
+  EXPECT_FALSE(recorder.stamps("/path").empty());
+
+  // 2. Zero-copy: every receive of a (topic, stamp) saw the address that was published.
+  std::map<std::pair<std::string, ros::Time>, std::uint64_t> published;
+  std::map<std::string, int> receives_checked;  // topic + receiver -> count
+  {
+    std::lock_guard<std::mutex> lock(trace_mutex);
+    for (const MessageTrace& t : traces)
+      if (t.event == "publish") published[{t.topic, t.header.stamp}] = t.address;
+    for (const MessageTrace& t : traces) {
+      if (t.event != "receive") continue;
+      auto it = published.find({t.topic, t.header.stamp});
+      if (it == published.end()) continue;  // published before the trace subscription
+      EXPECT_EQ(t.address, it->second) << t.nodelet << " received a copy on " << t.topic;
+      ++receives_checked[t.topic + " by " + t.nodelet];
+    }
+  }
+  for (const std::string expected :
+       {"/edge_frame by /nearest_neighbor_field", "/edge_frame by /tracking", "/edge_frame by /mapping",
+        "/nn_field by /tracking", "/tracked_frame by /mapping", "/keyframe_map by /tracking"})
+    EXPECT_GT(receives_checked[expected], 0) << "no traced receive: " << expected;
+
+  // 3. tf odom -> base_link at each image stamp, frames per REP-105, camera frame from the image.
+  int tf_checked = 0;
+  for (const ros::Time& stamp : recorder.stamps("/odometry")) {
+    if (stamp < first_output + ros::Duration(0.5)) continue;
+    geometry_msgs::TransformStamped transform;
+    ASSERT_NO_THROW(transform = tf_buffer.lookupTransform("odom", "base_link", stamp)) << stamp;
+    EXPECT_EQ(transform.header.stamp, stamp);
+    ++tf_checked;
+  }
+  EXPECT_GT(tf_checked, 30);
+  const std_msgs::Header odometry_header = recorder.lastHeader("/odometry");
+  EXPECT_EQ(odometry_header.frame_id, "odom");
+  EXPECT_EQ(recorder.lastHeader("/tracking_status").frame_id, "camera_optical_frame");
+  EXPECT_EQ(recorder.lastHeader("/edge_frame").frame_id, "camera_optical_frame");
+  EXPECT_TRUE(tf_buffer.canTransform("base_link", "camera_optical_frame", ros::Time(0)));
+
+  ASSERT_TRUE(cloud);
+  EXPECT_EQ(cloud->header.frame_id, "odom");
+  std::vector<std::string> fields;
+  for (const auto& f : cloud->fields) fields.push_back(f.name);
+  EXPECT_EQ(fields, (std::vector<std::string>{"x", "y", "z", "label", "rgb"}));
+  EXPECT_GT(cloud->width * cloud->height, 0u);
+}
+
+}  // namespace
+}  // namespace semantic_edge_vo
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "graph_flow_test");
+  return RUN_ALL_TESTS();
+}
