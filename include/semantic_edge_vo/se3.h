@@ -1,0 +1,20 @@
+#pragma once
+#include <Eigen/Geometry>
+
+namespace semantic_edge_vo {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+/// Skew-symmetric matrix: skew(a) * b = a x b.
+inline Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
+  Eigen::Matrix3d m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
+
+/// SE(3) exponential of a twist (v, w): translation part first, rotation part last.
+Eigen::Isometry3d se3Exp(const Vector6d& twist);
+/// Inverse of se3Exp (rotation angle below pi).
+Vector6d se3Log(const Eigen::Isometry3d& pose);
+
+}  // namespace semantic_edge_vo
