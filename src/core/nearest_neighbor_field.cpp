@@ -150,8 +150,11 @@ bool FieldLevelView::nearest(int layer, float x, float y, float max_radius, Fiel
       }
     }
   };
-  // Rings of buckets at Chebyshev distance r around the query's bucket. Every seed beyond ring r is
-  // at least r * cell_size away, which bounds the search exactly.
+  // Rings of buckets at Chebyshev distance r around the query's bucket. A seed beyond ring r lies
+  // outside a square reaching r buckets past the query's own bucket, so it is at least
+  // r * cell_size + (distance from the query to its bucket's border) away: an exact stopping bound.
+  const float fx = x + 0.5f - qx * cs, fy = y + 0.5f - qy * cs;
+  const float border = std::max(0.0f, std::min({fx, cs - fx, fy, cs - fy}));
   const int max_ring = static_cast<int>(std::ceil(max_radius / cs)) + 1;
   for (int r = 0; r <= max_ring; ++r) {
     if (r == 0) {
@@ -166,7 +169,7 @@ bool FieldLevelView::nearest(int layer, float x, float y, float max_radius, Fiel
         scanCell(qx + r, qy + dy);
       }
     }
-    const float reach = static_cast<float>(r) * cs;
+    const float reach = static_cast<float>(r) * cs + border;
     if (best_d2 <= reach * reach || reach * reach > max_d2) break;
   }
   if (best_d2 > max_d2) return false;
