@@ -9,6 +9,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "semantic_edge_vo/line_plot.h"
+
 namespace semantic_edge_vo {
 namespace {
 
@@ -16,15 +18,6 @@ constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 constexpr double kFontScale = 0.5;
 constexpr int kShift = 4;  ///< fixed-point bits for sub-pixel lines
 const cv::Scalar kText(0, 0, 0), kGrid(228, 228, 228), kGroundTruth(40, 40, 40), kEstimate(20, 110, 235);
-
-/// 1, 2 or 5 times a power of ten, about range / ticks.
-double niceStep(double range, int ticks) {
-  const double raw = range / ticks;
-  const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double mantissa : {1.0, 2.0, 5.0})
-    if (raw <= mantissa * magnitude) return mantissa * magnitude;
-  return 10.0 * magnitude;
-}
 
 std::string tickLabel(double value, double step) {
   const int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
@@ -73,7 +66,9 @@ PlotFrame fitFrame(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eig
 
 void drawAxes(const PlotFrame& frame, cv::Mat* image) {
   const cv::Rect& area = frame.area;
-  const double step = niceStep(frame.metres_per_px * std::min(area.width, area.height), 6);
+  // One round step for both axes (equal aspect), about six ticks along the shorter one.
+  const std::vector<double> ticks = niceTicks(0.0, frame.metres_per_px * std::min(area.width, area.height), 6);
+  const double step = ticks[1] - ticks[0];
   const double x_end = frame.x0 + frame.metres_per_px * area.width, z_end = frame.z0 + frame.metres_per_px * area.height;
   for (double x = std::ceil(frame.x0 / step) * step; x <= x_end; x += step) {
     const int u = frame.pixel(x, frame.z0).x >> kShift;
@@ -104,12 +99,12 @@ void drawAxes(const PlotFrame& frame, cv::Mat* image) {
 }
 
 void drawPath(const PlotFrame& frame, const std::vector<Eigen::Vector3d>& points, const cv::Scalar& colour,
-              cv::Mat* image) {
+              int thickness, cv::Mat* image) {
   if (points.empty()) return;
   std::vector<cv::Point> pixels;
   pixels.reserve(points.size());
   for (const auto& p : points) pixels.push_back(frame.pixel(p.x(), p.z()));
-  cv::polylines(*image, pixels, false, colour, 2, cv::LINE_AA, kShift);
+  cv::polylines(*image, pixels, false, colour, thickness, cv::LINE_AA, kShift);
   cv::circle(*image, pixels.front(), 5 << kShift, colour, cv::FILLED, cv::LINE_AA, kShift);
 }
 
@@ -121,7 +116,7 @@ void drawLegend(const TopDownPlotOptions& options, const cv::Rect& area, cv::Mat
                                                             {&options.est_label, kEstimate}};
   for (int i = 0; i < 2; ++i) {
     const int v = corner.y + 14 + 20 * i;
-    cv::line(*image, {corner.x + 8, v}, {corner.x + 36, v}, rows[i].second, 2, cv::LINE_AA);
+    cv::line(*image, {corner.x + 8, v}, {corner.x + 36, v}, rows[i].second, 4 - 2 * i, cv::LINE_AA);
     putText(image, *rows[i].first, {corner.x + 44, v + 5});
   }
 }
@@ -141,8 +136,8 @@ cv::Mat renderTopDownPlot(const std::vector<Eigen::Vector3d>& gt, const std::vec
   const cv::Rect area(100, 70, options.width_px - 130, options.height_px - 140);
   const PlotFrame frame = fitFrame(gt, est, area);
   drawAxes(frame, &image);
-  drawPath(frame, gt, kGroundTruth, &image);
-  drawPath(frame, est, kEstimate, &image);
+  drawPath(frame, gt, kGroundTruth, 4, &image);  // wider, so that it shows round an estimate on top of it
+  drawPath(frame, est, kEstimate, 2, &image);
   cv::rectangle(image, area, kText, 1);
   putText(&image, options.title, {area.x, 30});
   drawLegend(options, area, &image);
