@@ -22,7 +22,4 @@ std::string evaluationMarkdown(const EvaluationSources& sources, const Trajector
 std::string evaluationJson(const EvaluationSources& sources, const TrajectoryEvaluation& evaluation,
                            const TrajectoryEvaluationOptions& options);
 
-/// `text` as a quoted JSON string, escaped per RFC 8259 (quote, backslash, control characters).
-std::string jsonString(const std::string& text);
-
 }  // namespace semantic_edge_vo

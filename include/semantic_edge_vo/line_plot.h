@@ -23,6 +23,9 @@ struct LinePlotOptions {
 /// Returns an 8-bit BGR image (write it with cv::imwrite).
 cv::Mat renderLinePlot(const std::vector<PlotSeries>& series, const LinePlotOptions& options);
 
+/// A tick value printed with as many decimals as the tick step needs ("0", not "-0").
+std::string tickLabel(double value, double step);
+
 /// Round tick values covering [low, high]: steps of 1, 2 or 5 times a power of ten, about `count` of them.
 std::vector<double> niceTicks(double low, double high, int count = 6);
 

@@ -1,5 +1,7 @@
 #include "semantic_edge_vo/convergence_experiment.h"
 
+#include "semantic_edge_vo/json_text.h"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -79,19 +81,6 @@ void appendRows(std::ostringstream* json, const std::vector<ConvergenceRow>& row
   *json << "]";
 }
 
-std::string jsonEscaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += c;
-  }
-  return out;
-}
-
 }  // namespace
 
 std::string ConvergenceOptions::validate() const {
@@ -138,7 +127,7 @@ ConvergenceCurve runConvergence(const std::vector<RegistrationProblem>& problems
 std::string convergenceJson(const std::vector<ConvergenceCurve>& curves, const std::string& description) {
   std::ostringstream json;
   json.precision(6);
-  json << "{\n  \"description\": \"" << jsonEscaped(description) << "\"";
+  json << "{\n  \"description\": " << jsonString(description);
   for (const ConvergenceCurve& c : curves) {
     json << ",\n  \"" << toString(c.kind) << "\": {\"basin_m\": " << c.basin_m << ", \"basin_deg\": " << c.basin_deg
          << ",\n    \"translation\": ";

@@ -1,5 +1,7 @@
 #include "semantic_edge_vo/evaluation_report.h"
 
+#include "semantic_edge_vo/json_text.h"
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -188,29 +190,6 @@ void markdownSegments(const TrajectoryEvaluation& e, std::ostringstream& md) {
 
 }  // namespace
 
-std::string jsonString(const std::string& text) {
-  std::string quoted = "\"";
-  for (const char c : text) {
-    switch (c) {
-      case '"': quoted += "\\\""; break;
-      case '\\': quoted += "\\\\"; break;
-      case '\b': quoted += "\\b"; break;
-      case '\f': quoted += "\\f"; break;
-      case '\n': quoted += "\\n"; break;
-      case '\r': quoted += "\\r"; break;
-      case '\t': quoted += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char escape[8];
-          std::snprintf(escape, sizeof(escape), "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-          quoted += escape;
-        } else {
-          quoted += c;
-        }
-    }
-  }
-  return quoted + "\"";
-}
 
 std::string evaluationMarkdown(const EvaluationSources& sources, const TrajectoryEvaluation& evaluation,
                                const TrajectoryEvaluationOptions& options) {

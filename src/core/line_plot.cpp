@@ -9,16 +9,12 @@
 #include <opencv2/imgproc.hpp>
 
 namespace semantic_edge_vo {
-namespace {
-
 std::string tickLabel(double value, double step) {
-  std::ostringstream text;
-  const int decimals = std::max(0, -static_cast<int>(std::floor(std::log10(step) + 1e-9)));
-  text << std::fixed << std::setprecision(decimals) << value;
-  return text.str();
+  const int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
+  std::ostringstream label;
+  label << std::fixed << std::setprecision(decimals) << (std::abs(value) < 1e-6 * step ? 0.0 : value);
+  return label.str();
 }
-
-}  // namespace
 
 std::vector<double> niceTicks(double low, double high, int count) {
   if (!(high > low)) high = low + 1.0;

@@ -19,13 +19,6 @@ constexpr double kFontScale = 0.5;
 constexpr int kShift = 4;  ///< fixed-point bits for sub-pixel lines
 const cv::Scalar kText(0, 0, 0), kGrid(228, 228, 228), kGroundTruth(40, 40, 40), kEstimate(20, 110, 235);
 
-std::string tickLabel(double value, double step) {
-  const int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
-  std::ostringstream label;
-  label << std::fixed << std::setprecision(decimals) << (std::abs(value) < 1e-6 * step ? 0.0 : value);
-  return label.str();
-}
-
 cv::Size textSize(const std::string& text) {
   int baseline = 0;
   return cv::getTextSize(text, kFont, kFontScale, 1, &baseline);

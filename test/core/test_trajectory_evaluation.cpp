@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include "semantic_edge_vo/evaluation_report.h"
+#include "semantic_edge_vo/json_text.h"
 #include "semantic_edge_vo/trajectory_association.h"
 #include "semantic_edge_vo/trajectory_evaluator.h"
 #include "semantic_edge_vo/trajectory_io.h"
