@@ -1,0 +1,61 @@
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/segmenter.h"
+
+namespace semantic_edge_vo {
+namespace {
+
+const std::string kModel = std::string(SEVO_SHARED_DIR) + "/models/enet_cityscapes/model-best.opencv.net";
+const std::string kColorFrame = std::string(SEVO_SHARED_DIR) + "/data/kitti_odometry/color_frames/kitti06-12-color.png";
+
+TEST(Segmenter, ReportsAMissingModelOrBadOptions) {
+  SegmenterOptions options;
+  options.model_path = "/nonexistent/model.net";
+  EXPECT_NE(Segmenter(options, 19).error().find("does not exist"), std::string::npos);
+  options.format = "keras";
+  EXPECT_NE(Segmenter(options, 19).error().find("format"), std::string::npos);
+}
+
+TEST(Segmenter, EnetOnAKittiColourFrame) {
+  if (!std::filesystem::exists(kModel) || !std::filesystem::exists(kColorFrame))
+    GTEST_SKIP() << "ENet model or KITTI colour frame absent (" << kModel << ", " << kColorFrame << ")";
+  SegmenterOptions options;
+  options.model_path = kModel;
+  const ClassTable classes = ClassTable::cityscapes();
+  Segmenter segmenter(options, classes.size());
+  ASSERT_TRUE(segmenter.ok()) << segmenter.error();
+  const cv::Mat image = cv::imread(kColorFrame, cv::IMREAD_COLOR);
+  ASSERT_FALSE(image.empty());
+
+  cv::Mat probabilities;
+  const double ms = segmenter.segment(image, CV_32F, &probabilities);
+  std::cout << "ENet " << options.input_width << "x" << options.input_height << " on " << image.cols << "x"
+            << image.rows << ": " << ms << " ms\n";
+  ASSERT_EQ(probabilities.type(), CV_32FC(19));
+  ASSERT_EQ(probabilities.size(), image.size());
+  double low, high;
+  cv::minMaxLoc(probabilities.reshape(1), &low, &high);
+  EXPECT_GE(low, 0.0);
+  EXPECT_LE(high, 1.0 + 1e-5);
+  // The road in front of the car, bottom centre of the frame.
+  const float* p = probabilities.ptr<float>(image.rows - 20) + (image.cols / 2) * 19;
+  EXPECT_EQ(std::max_element(p, p + 19) - p, classes.indexOf("road"));
+  float sum = 0.0f;
+  for (int c = 0; c < 19; ++c) sum += p[c];
+  EXPECT_LE(sum, 1.0f + 1e-4f) << "Unlabeled dropped, not redistributed";
+
+  // The 8-bit form written in place into a caller's buffer.
+  std::vector<std::uint8_t> buffer(image.total() * 19);
+  cv::Mat bytes(image.rows, image.cols, CV_8UC(19), buffer.data());
+  segmenter.segment(image, CV_8U, &bytes);
+  EXPECT_EQ(bytes.data, buffer.data()) << "written in place";
+  EXPECT_NEAR(bytes.ptr<std::uint8_t>(image.rows - 20)[(image.cols / 2) * 19 + classes.indexOf("road")],
+              255.0 * p[classes.indexOf("road")], 1.0);
+}
+
+}  // namespace
+}  // namespace semantic_edge_vo
