@@ -1,0 +1,45 @@
+#pragma once
+#include <string>
+
+#include <rosbag/bag.h>
+#include <sensor_msgs/CameraInfo.h>
+
+#include "semantic_edge_vo/camera.h"
+#include "semantic_edge_vo/synthetic/synthetic_sequence.h"
+
+namespace semantic_edge_vo {
+
+/// Writes synthetic frames into a rosbag on conventional topics (docs/synthetic_sequences.md):
+///   /camera/image_rect, /camera/camera_info                 sensor_msgs/Image mono8 + CameraInfo
+///   /camera/color/image_rect/compressed, /camera/color/camera_info   PNG, bgr8
+///   /camera/semantics/{class, class_confidence, edge_strength, edge_classes, ground_truth_class}/compressed
+///   /ground_truth/pose                                      geometry_msgs/PoseStamped, camera to world
+/// Stamps are kBaseTime + the frame time.
+class SequenceBagWriter {
+ public:
+  static constexpr double kBaseTime = 1600000000.0;  ///< s (2020-09-13), stamp of frame 0
+  static constexpr const char* kCameraFrame = "camera_optical_frame";
+  static constexpr const char* kWorldFrame = "world";
+
+  /// Opens `path` for writing; check error().
+  SequenceBagWriter(const std::string& path, const PinholeCamera& camera, bool semantics);
+  ~SequenceBagWriter();
+
+  const std::string& error() const { return error_; }
+  bool write(const synthetic::SyntheticFrame& frame);
+  void close();
+
+ private:
+  void writePng(const std::string& topic, const ros::Time& stamp, const cv::Mat& image, const std::string& encoding);
+
+  rosbag::Bag bag_;
+  sensor_msgs::CameraInfo info_;
+  bool semantics_;
+  bool open_ = false;
+  std::string error_;
+};
+
+/// A complete CameraInfo of a rectified pinhole camera (K, P, R identity, D zero, plumb_bob).
+sensor_msgs::CameraInfo cameraInfoOf(const PinholeCamera& camera, const std::string& frame_id);
+
+}  // namespace semantic_edge_vo

@@ -1,0 +1,110 @@
+#include "semantic_edge_vo/synthetic/sequence_directory_writer.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "semantic_edge_vo/synthetic/sequence_formats.h"
+
+namespace semantic_edge_vo {
+namespace synthetic {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kImageFolders[] = {"image_0", "image_2", "depth", "semantic", "semantic_rgb", "dynamic"};
+const char* const kSemanticFolders[] = {"edge_strength", "edge_classes", "class_probability"};
+
+void writeProjection(std::ostream& out, const char* name, const PinholeCamera& c) {
+  out << name << std::scientific << std::setprecision(12) << ' ' << c.fx << ' ' << 0.0 << ' ' << c.cx << ' ' << 0.0 << ' '
+      << 0.0 << ' ' << c.fy << ' ' << c.cy << ' ' << 0.0 << ' ' << 0.0 << ' ' << 0.0 << ' ' << 1.0 << ' ' << 0.0 << '\n';
+}
+
+void writeMetadata(std::ostream& out, const SyntheticSequenceOptions& options, int frames, const ClassTable& classes) {
+  const NetworkNoiseOptions& noise = options.network_noise;
+  out << "# Synthetic driving sequence (semantic_edge_vo make_synthetic_sequence); formats: docs/synthetic_sequences.md\n"
+      << "format_version: 1\n"
+      << "scene: " << toString(options.world.scene) << "\n"
+      << "seed: " << options.world.seed << "\n"
+      << "frames: " << frames << "\n"
+      << "frame_rate: " << options.world.ego.frame_rate << "  # Hz\n"
+      << "camera: {width: " << options.camera.width << ", height: " << options.camera.height << ", fx: " << options.camera.fx
+      << ", fy: " << options.camera.fy << ", cx: " << options.camera.cx << ", cy: " << options.camera.cy << "}\n"
+      << "camera_height: " << options.world.ego.camera_height << "  # m above the road\n"
+      << "depth_scale: " << kDepthScale << "  # depth PNG value / depth_scale = metres; 0 = sky or >= "
+      << kMaxEncodedDepth << " m\n"
+      << "semantics: " << (options.semantics ? "true" : "false") << "\n"
+      << "network_noise: {label_confusion: " << noise.label_confusion << ", edge_blur: " << noise.edge_blur
+      << ", missed_edges: " << noise.missed_edges << ", spurious_edges: " << noise.spurious_edges << "}\n"
+      << "classes:  # index = Cityscapes train id = bit of the edge class masks; rgb of semantic_rgb\n";
+  for (const SemanticClass& c : classes.classes())
+    out << "  - {name: \"" << c.name << "\", rgb: [" << int(c.rgb[0]) << ", " << int(c.rgb[1]) << ", " << int(c.rgb[2])
+        << "]}\n";
+}
+
+}  // namespace
+
+SequenceDirectoryWriter::SequenceDirectoryWriter(const std::string& directory, const SyntheticSequenceOptions& options,
+                                                 int frames)
+    : directory_(directory), semantics_(options.semantics), classes_(ClassTable::cityscapes()) {
+  std::error_code code;
+  fs::create_directories(directory_, code);
+  for (const char* folder : kImageFolders) fs::create_directories(fs::path(directory_) / folder, code);
+  if (semantics_)
+    for (const char* folder : kSemanticFolders) fs::create_directories(fs::path(directory_) / folder, code);
+  if (code) {
+    error_ = "cannot create " + directory_ + ": " + code.message();
+    return;
+  }
+  std::ofstream calib(fs::path(directory_) / "calib.txt");
+  writeProjection(calib, "P0:", options.camera);
+  writeProjection(calib, "P2:", options.camera);  // the colour image shares the optical centre
+  std::ofstream metadata(fs::path(directory_) / "synthetic.yaml");
+  writeMetadata(metadata, options, frames, classes_);
+  times_.open(fs::path(directory_) / "times.txt");
+  poses_.open(fs::path(directory_) / "poses.txt");
+  if (!calib || !metadata || !times_ || !poses_) error_ = "cannot write the text files in " + directory_;
+}
+
+bool SequenceDirectoryWriter::writeImage(const std::string& folder, int index, const cv::Mat& image) {
+  char name[16];
+  std::snprintf(name, sizeof(name), "%06d.png", index);
+  const std::string path = (fs::path(directory_) / folder / name).string();
+  bool written = false;
+  try {
+    written = cv::imwrite(path, image, {cv::IMWRITE_PNG_COMPRESSION, 1});
+  } catch (const cv::Exception& e) {
+    error_ = "cannot write " + path + ": " + e.what();
+    return false;
+  }
+  if (!written) error_ = "cannot write " + path;
+  return written;
+}
+
+bool SequenceDirectoryWriter::write(const SyntheticFrame& frame) {
+  if (!error_.empty()) return false;
+  const int i = frame.index;
+  bool ok = writeImage("image_0", i, frame.gray) && writeImage("image_2", i, frame.color) &&
+            writeImage("depth", i, encodeDepth(frame.depth)) && writeImage("semantic", i, frame.class_id) &&
+            writeImage("semantic_rgb", i, colorizeClasses(frame.class_id, classes_)) &&
+            writeImage("dynamic", i, frame.dynamic);
+  if (ok && semantics_)
+    ok = writeImage("edge_strength", i, frame.semantics.edge_strength) &&
+         writeImage("edge_classes", i, maskBytes(frame.semantics.edge_classes)) &&
+         writeImage("class_probability", i, frame.semantics.class_probability);
+  if (!ok) return false;
+  times_ << std::scientific << std::setprecision(6) << frame.time << '\n';
+  const Eigen::Matrix<double, 3, 4> pose = frame.T_world_cam.matrix().topRows<3>();
+  poses_ << std::scientific << std::setprecision(9);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) poses_ << pose(r, c) << (r == 2 && c == 3 ? '\n' : ' ');
+  times_.flush();
+  poses_.flush();
+  if (!times_ || !poses_) error_ = "cannot append to times.txt or poses.txt in " + directory_;
+  return error_.empty();
+}
+
+}  // namespace synthetic
+}  // namespace semantic_edge_vo

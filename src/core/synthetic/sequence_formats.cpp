@@ -1,0 +1,59 @@
+#include "semantic_edge_vo/synthetic/sequence_formats.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace semantic_edge_vo {
+namespace synthetic {
+
+cv::Mat encodeDepth(const cv::Mat& depth) {
+  CV_Assert(depth.type() == CV_32FC1);
+  cv::Mat encoded(depth.size(), CV_16UC1);
+  for (int y = 0; y < depth.rows; ++y) {
+    const float* in = depth.ptr<float>(y);
+    auto* out = encoded.ptr<std::uint16_t>(y);
+    for (int x = 0; x < depth.cols; ++x) {
+      const double value = std::round(in[x] * kDepthScale);
+      out[x] = in[x] > 0.0f && value <= 65535.0 ? static_cast<std::uint16_t>(value) : 0;
+    }
+  }
+  return encoded;
+}
+
+cv::Mat decodeDepth(const cv::Mat& encoded) {
+  CV_Assert(encoded.type() == CV_16UC1);
+  cv::Mat depth;
+  encoded.convertTo(depth, CV_32FC1, 1.0 / kDepthScale);
+  return depth;
+}
+
+cv::Mat maskBytes(const cv::Mat& masks) {
+  CV_Assert(masks.type() == CV_32SC1);
+  static_assert(sizeof(std::int32_t) == 4, "4 bytes per mask");
+  return cv::Mat(masks.rows, masks.cols, CV_8UC4, const_cast<std::uint8_t*>(masks.data), masks.step);
+}
+
+cv::Mat masksFromBytes(const cv::Mat& bytes) {
+  CV_Assert(bytes.type() == CV_8UC4);
+  cv::Mat masks(bytes.rows, bytes.cols, CV_32SC1);
+  for (int y = 0; y < bytes.rows; ++y) std::memcpy(masks.ptr(y), bytes.ptr(y), static_cast<std::size_t>(bytes.cols) * 4);
+  return masks;
+}
+
+cv::Mat colorizeClasses(const cv::Mat& class_id, const ClassTable& table) {
+  CV_Assert(class_id.type() == CV_8UC1);
+  cv::Mat colour(class_id.size(), CV_8UC3, cv::Scalar::all(0));
+  for (int y = 0; y < class_id.rows; ++y) {
+    const std::uint8_t* in = class_id.ptr<std::uint8_t>(y);
+    auto* out = colour.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < class_id.cols; ++x)
+      if (in[x] < table.size()) {
+        const auto& rgb = table[in[x]].rgb;
+        out[x] = cv::Vec3b(rgb[2], rgb[1], rgb[0]);
+      }
+  }
+  return colour;
+}
+
+}  // namespace synthetic
+}  // namespace semantic_edge_vo

@@ -1,0 +1,86 @@
+#include "semantic_edge_vo/ros/sequence_bag_writer.h"
+
+#include <cv_bridge/cv_bridge.h>
+#include <geometry_msgs/PoseStamped.h>
+#include <opencv2/imgcodecs.hpp>
+#include <sensor_msgs/CompressedImage.h>
+
+#include "semantic_edge_vo/ros/conversions.h"
+#include "semantic_edge_vo/synthetic/sequence_formats.h"
+
+namespace semantic_edge_vo {
+
+sensor_msgs::CameraInfo cameraInfoOf(const PinholeCamera& camera, const std::string& frame_id) {
+  sensor_msgs::CameraInfo info;
+  info.header.frame_id = frame_id;
+  info.width = static_cast<std::uint32_t>(camera.width);
+  info.height = static_cast<std::uint32_t>(camera.height);
+  info.distortion_model = "plumb_bob";
+  info.D.assign(5, 0.0);
+  info.K = {camera.fx, 0.0, camera.cx, 0.0, camera.fy, camera.cy, 0.0, 0.0, 1.0};
+  info.R = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
+  info.P = {camera.fx, 0.0, camera.cx, 0.0, 0.0, camera.fy, camera.cy, 0.0, 0.0, 0.0, 1.0, 0.0};
+  return info;
+}
+
+SequenceBagWriter::SequenceBagWriter(const std::string& path, const PinholeCamera& camera, bool semantics)
+    : info_(cameraInfoOf(camera, kCameraFrame)), semantics_(semantics) {
+  try {
+    bag_.open(path, rosbag::bagmode::Write);
+    open_ = true;
+  } catch (const rosbag::BagException& e) {
+    error_ = "cannot open the bag " + path + ": " + e.what();
+  }
+}
+
+SequenceBagWriter::~SequenceBagWriter() { close(); }
+
+void SequenceBagWriter::close() {
+  if (open_) bag_.close();
+  open_ = false;
+}
+
+void SequenceBagWriter::writePng(const std::string& topic, const ros::Time& stamp, const cv::Mat& image,
+                                 const std::string& encoding) {
+  sensor_msgs::CompressedImage message;
+  message.header.stamp = stamp;
+  message.header.frame_id = kCameraFrame;
+  message.format = encoding + "; png compressed ";
+  cv::imencode(".png", image, message.data, {cv::IMWRITE_PNG_COMPRESSION, 1});
+  bag_.write(topic, stamp, message);
+}
+
+bool SequenceBagWriter::write(const synthetic::SyntheticFrame& frame) {
+  if (!open_ || !error_.empty()) return false;
+  try {
+    const ros::Time stamp(kBaseTime + frame.time);
+    std_msgs::Header header;
+    header.stamp = stamp;
+    header.frame_id = kCameraFrame;
+    header.seq = static_cast<std::uint32_t>(frame.index);
+    info_.header = header;
+    bag_.write("/camera/image_rect", stamp, cv_bridge::CvImage(header, "mono8", frame.gray).toImageMsg());
+    bag_.write("/camera/camera_info", stamp, info_);
+    writePng("/camera/color/image_rect/compressed", stamp, frame.color, "bgr8");
+    bag_.write("/camera/color/camera_info", stamp, info_);
+    if (semantics_) {
+      writePng("/camera/semantics/class/compressed", stamp, frame.semantics.topClass(), "mono8");
+      writePng("/camera/semantics/class_confidence/compressed", stamp, frame.semantics.topConfidence(), "mono8");
+      writePng("/camera/semantics/edge_strength/compressed", stamp, frame.semantics.edge_strength, "mono8");
+      writePng("/camera/semantics/edge_classes/compressed", stamp, synthetic::maskBytes(frame.semantics.edge_classes),
+               "bgra8");
+      writePng("/camera/semantics/ground_truth_class/compressed", stamp, frame.class_id, "mono8");
+    }
+    geometry_msgs::PoseStamped pose;
+    pose.header.stamp = stamp;
+    pose.header.frame_id = kWorldFrame;
+    pose.pose = toPoseMsg(frame.T_world_cam);
+    bag_.write("/ground_truth/pose", stamp, pose);
+  } catch (const std::exception& e) {
+    error_ = std::string("cannot write to the bag: ") + e.what();
+    return false;
+  }
+  return true;
+}
+
+}  // namespace semantic_edge_vo
