@@ -32,8 +32,10 @@ std::string CannyOptions::validate() const {
 
 EdgeSet CannyEdgeDetector::detect(const cv::Mat& gray, std::uint32_t class_mask) const {
   CV_Assert(gray.type() == CV_8UC1);
-  cv::Mat smoothed = gray;
+  // A new buffer: blurring into a header that shares `gray` would overwrite the caller's image.
+  cv::Mat smoothed;
   if (options_.blur_sigma > 0.0) cv::GaussianBlur(gray, smoothed, cv::Size(0, 0), options_.blur_sigma);
+  else smoothed = gray;
 
   cv::Mat dx, dy, edges;
   cv::Sobel(smoothed, dx, CV_16S, 1, 0, 3);

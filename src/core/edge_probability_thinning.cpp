@@ -31,8 +31,10 @@ std::string EdgeThinningOptions::validate() const {
 
 EdgeSet thinEdgeProbability(const cv::Mat& probability, const cv::Mat& gray, const EdgeThinningOptions& options) {
   CV_Assert(probability.type() == CV_32FC1 && gray.type() == CV_8UC1 && probability.size() == gray.size());
-  cv::Mat smoothed = probability;
+  // A new buffer: blurring into a header that shares `probability` would overwrite the caller's image.
+  cv::Mat smoothed;
   if (options.blur_sigma > 0.0) cv::GaussianBlur(probability, smoothed, cv::Size(0, 0), options.blur_sigma);
+  else smoothed = probability;
 
   EdgeSet result;
   const auto threshold = static_cast<float>(options.threshold);

@@ -1,6 +1,10 @@
-// EdgeIntake: image + camera_info -> SemanticEdgeFrame (edges, classes, point sample).
+// EdgeIntake: image + camera_info (+ class map, + edge map) -> SemanticEdgeFrame (edges, classes,
+// point sample). Raw images through image_transport, or sensor_msgs/CompressedImage decoded here.
 #include <cstring>
 #include <mutex>
+
+#include <message_filters/subscriber.h>
+#include <message_filters/time_synchronizer.h>
 
 #include <cv_bridge/cv_bridge.h>
 #include <image_transport/image_transport.h>
@@ -10,11 +14,14 @@
 #include <sensor_msgs/image_encodings.h>
 
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
-#include "semantic_edge_vo/canny_edge_detector.h"
 #include "semantic_edge_vo/class_table.h"
 #include "semantic_edge_vo/point_sampler.h"
+#include "semantic_edge_vo/semantic_edge_extractor.h"
+#include "semantic_edge_vo/ros/class_input.h"
 #include "semantic_edge_vo/ros/conversions.h"
+#include "semantic_edge_vo/ros/frame_pairing.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
+#include "semantic_edge_vo/ros/intake_options_loading.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
 #include "semantic_edge_vo/ros/options_loading.h"
 
@@ -28,26 +35,62 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     ros::NodeHandle& private_node = getPrivateNodeHandle();
     rejections_ = std::make_unique<InputRejections>(getName());
     ParameterLoader loader(private_node);
-    std::string mode = "canny";
-    loader.load("mode", &mode, "(canny)");
     int queue_size = 5;
     loader.load("queue_size", &queue_size, "messages");
-    std::string error = mode == "canny" ? "" : "mode '" + mode + "' is not available (supported: canny)";
-    if (error.empty()) error = loadCannyOptions(&loader, &canny_options_);
+    std::string transport = "raw", class_format = "probabilities", edge_source = "canny", on_missing = "canny";
+    double class_wait = 0.5;
+    int max_pending = 10;
+    loader.load("transport", &transport, "(raw | compressed)");
+    std::string error = loadSemanticEdgeOptions(&loader, &options_);
+    if (error.empty() && options_.mode != IntakeMode::kCanny) {
+      loader.load("class_format", &class_format, "(probabilities | labels | bitmask)");
+      loader.load("edge_source", &edge_source, "(canny | topic; fused)");
+      loader.load("class_wait", &class_wait, "s");
+      loader.load("on_missing_classes", &on_missing, "(drop | canny)");
+      loader.load("max_pending", &max_pending, "frames");
+      error = loadClassTable(private_node, &classes_);
+    } else {
+      classes_ = ClassTable::singleEdgeClass();
+    }
     if (error.empty()) error = loadPointSamplerOptions(&loader, &sampler_options_);
-    NODELET_INFO_STREAM("parameters:" << loader.summary());
+    NODELET_INFO_STREAM("parameters:" << loader.summary() << "\n  classes = " << classes_.size());
     if (error.empty() && queue_size < 1) error = "queue_size must be >= 1";
+    if (error.empty() && transport != "raw" && transport != "compressed")
+      error = "transport must be raw or compressed (got '" + transport + "')";
+    if (error.empty() && !parseClassEvidenceForm(class_format, &class_form_))
+      error = "class_format must be probabilities, labels or bitmask (got '" + class_format + "')";
+    if (error.empty() && edge_source != "canny" && edge_source != "topic")
+      error = "edge_source must be canny or topic (got '" + edge_source + "')";
+    if (error.empty() && on_missing != "drop" && on_missing != "canny")
+      error = "on_missing_classes must be drop or canny (got '" + on_missing + "')";
+    if (error.empty() && !(class_wait > 0.0 && max_pending >= 1)) error = "need class_wait > 0 s and max_pending >= 1";
     if (!error.empty()) {
       NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
       return;
     }
-    classes_ = ClassTable::singleEdgeClass();
+    fallback_to_canny_ = on_missing == "canny";
+    const bool need_edges = options_.mode == IntakeMode::kFused && edge_source == "topic";
+    pairing_ = std::make_unique<FramePairing>(need_edges, class_wait, static_cast<std::size_t>(max_pending));
     tracer_.init(node, private_node, getName());
     frame_publisher_ = node.advertise<SemanticEdgeFrame>("edge_frame", 5);
-    image_transport::ImageTransport transport(node);
-    edge_image_publisher_ = transport.advertise("edge_image", 1);
-    camera_subscriber_ = transport.subscribeCamera("image", static_cast<std::uint32_t>(queue_size),
-                                                   &EdgeIntakeNodelet::onImage, this);
+    image_transport::ImageTransport image_transport(node);
+    edge_image_publisher_ = image_transport.advertise("edge_image", 1);
+    const auto queue = static_cast<std::uint32_t>(queue_size);
+    if (transport == "raw") {
+      camera_subscriber_ = image_transport.subscribeCamera("image", queue, &EdgeIntakeNodelet::onImage, this);
+    } else {
+      // The compressed stream beside the resolved (remapped) image topic, as image_transport names it.
+      const std::string image_topic = node.resolveName("image");
+      compressed_subscriber_.subscribe(node, image_topic + "/compressed", queue);
+      info_subscriber_.subscribe(node, image_transport::getCameraInfoTopic(image_topic), queue);
+      compressed_sync_ = std::make_unique<CompressedSync>(compressed_subscriber_, info_subscriber_, queue);
+      compressed_sync_->registerCallback(&EdgeIntakeNodelet::onCompressedImage, this);
+    }
+    if (options_.mode == IntakeMode::kCanny) return;
+    const char* class_topic = options_.mode == IntakeMode::kFused ? "class_probabilities" : "class_edge_probabilities";
+    class_subscriber_ = node.subscribe(class_topic, queue, &EdgeIntakeNodelet::onClasses, this);
+    if (need_edges) edge_subscriber_ = node.subscribe("edge_probability", queue, &EdgeIntakeNodelet::onEdges, this);
+    expiry_timer_ = node.createWallTimer(ros::WallDuration(std::min(0.05, class_wait / 4)), &EdgeIntakeNodelet::onTimer, this);
   }
 
   /// Empty when the pair can be used, else the reason's name; `detail` says what was expected.
@@ -87,38 +130,91 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     return {};
   }
 
+  void onCompressedImage(const sensor_msgs::CompressedImageConstPtr& compressed, const sensor_msgs::CameraInfoConstPtr& info) {
+    sensor_msgs::ImagePtr image;
+    std::string detail;
+    const std::string reason = decodeCompressedImage(*compressed, &image, &detail);
+    if (!reason.empty()) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      rejections_->reject("compressed image", reason, detail);
+      return;
+    }
+    onImage(image, info);
+  }
+
   void onImage(const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfoConstPtr& info) {
+    std::lock_guard<std::mutex> lock(mutex_);
     std::string detail;
     const std::string reason = check(*image, *info, &detail);
     if (!reason.empty()) {
       rejections_->reject("image", reason, detail);
       return;
     }
+    last_stamp_ = image->header.stamp;
+    if (options_.mode == IntakeMode::kCanny) {
+      process(FramePairing::Frame{image, info, nullptr, nullptr, true});
+      return;
+    }
+    handle(pairing_->addImage(image, info, ros::WallTime::now()));
+  }
+
+  void onClasses(const sensor_msgs::ImageConstPtr& classes) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    handle(pairing_->addClasses(classes, ros::WallTime::now()));
+  }
+  void onEdges(const sensor_msgs::ImageConstPtr& edges) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    handle(pairing_->addEdges(edges, ros::WallTime::now()));
+  }
+  void onTimer(const ros::WallTimerEvent&) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    handle(pairing_->expire(ros::WallTime::now()));
+  }
+
+  /// Frames leaving the pairing: complete ones are processed, the others dropped or made with Canny.
+  void handle(const std::vector<FramePairing::Frame>& frames) {
+    for (const FramePairing::Frame& frame : frames) {
+      if (!frame.complete)
+        NODELET_WARN_STREAM_THROTTLE(5.0, "no " << (frame.classes ? "edge map" : "class map") << " for the image of "
+                                                << frame.image->header.stamp << " within class_wait: "
+                                                << (fallback_to_canny_ ? "made with Canny, every class" : "dropped"));
+      if (frame.complete || fallback_to_canny_) process(frame);
+    }
+  }
+
+  /// Edges of an incomplete frame (Canny, every class bit: the class is unknown) or of a complete one.
+  void process(const FramePairing::Frame& input) {
+    const sensor_msgs::Image& image = *input.image;
     cv_bridge::CvImageConstPtr gray_input;
     try {
-      gray_input = cv_bridge::toCvShare(image, enc::MONO8);
+      gray_input = cv_bridge::toCvShare(image, input.image, enc::MONO8);
     } catch (const cv_bridge::Exception& e) {
       rejections_->reject("image", "conversion_failed", e.what());
       return;
     }
-    last_stamp_ = image->header.stamp;
-
     auto frame = boost::make_shared<SemanticEdgeFrame>();
-    frame->header = image->header;
-    frame->camera_info = *info;
+    frame->header = image.header;
+    frame->camera_info = *input.info;
     frame->class_names = classes_.names();
-    frame->intake_mode = "canny";
     // The frame owns its grayscale image; write it in place and run the detectors on that buffer.
-    frame->image.header = image->header;
-    frame->image.width = image->width;
-    frame->image.height = image->height;
+    frame->image.header = image.header;
+    frame->image.width = image.width;
+    frame->image.height = image.height;
     frame->image.encoding = enc::MONO8;
-    frame->image.step = image->width;
-    frame->image.data.resize(static_cast<std::size_t>(image->width) * image->height);
-    cv::Mat gray(static_cast<int>(image->height), static_cast<int>(image->width), CV_8UC1, frame->image.data.data());
+    frame->image.step = image.width;
+    frame->image.data.resize(static_cast<std::size_t>(image.width) * image.height);
+    cv::Mat gray(static_cast<int>(image.height), static_cast<int>(image.width), CV_8UC1, frame->image.data.data());
     gray_input->image.copyTo(gray);
 
-    EdgeSet edges = CannyEdgeDetector(canny_options_).detect(gray, 1u);
+    EdgeSet edges;
+    const SemanticEdgeExtractor extractor(options_);
+    if (input.complete) {
+      if (!extractEdges(input, gray, extractor, &edges)) return;
+      frame->intake_mode = toString(options_.mode);
+    } else {
+      edges = extractor.cannyEdges(gray, classes_.size() >= 32 ? ~0u : (1u << classes_.size()) - 1u);
+      frame->intake_mode = toString(IntakeMode::kCanny);
+    }
     PointSample sample = PointSampler(sampler_options_).sample(gray, edges.view());
     frame->sampled_edges = std::move(sample.edge_indices);
     frame->support_u = std::move(sample.support_u);
@@ -128,6 +224,30 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     if (edge_image_publisher_.getNumSubscribers() > 0) publishEdgeImage(*frame, gray);
     frame_publisher_.publish(SemanticEdgeFrameConstPtr(frame));
     tracer_.published(frame_publisher_, frame.get(), frame->header.stamp);
+  }
+
+  /// The edges with classes from the frame's maps (viewed in place); false when a map is refused.
+  bool extractEdges(const FramePairing::Frame& input, const cv::Mat& gray, const SemanticEdgeExtractor& extractor,
+                    EdgeSet* edges) {
+    std::string detail;
+    ClassEvidence evidence;
+    cv::Mat edge_probability;
+    std::string reason;
+    if (input.classes) reason = classEvidenceFromImage(*input.classes, class_form_, classes_.size(), &evidence, &detail);
+    if (!reason.empty()) {
+      rejections_->reject("class map", reason, detail);
+      return false;
+    }
+    if (input.edges) reason = edgeProbabilityFromImage(*input.edges, &edge_probability, &detail);
+    if (!reason.empty()) {
+      rejections_->reject("edge map", reason, detail);
+      return false;
+    }
+    if (ExtractionError error = extractor.extract(gray, evidence, edge_probability, edges)) {
+      rejections_->reject("class map", error.reason, error.detail);
+      return false;
+    }
+    return true;
   }
 
   /// The image dimmed, edges drawn in their class colour: what rviz shows as the edge image.
@@ -144,15 +264,26 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     edge_image_publisher_.publish(overlay.toImageMsg());
   }
 
-  CannyOptions canny_options_;
+  using CompressedSync = message_filters::TimeSynchronizer<sensor_msgs::CompressedImage, sensor_msgs::CameraInfo>;
+
+  SemanticEdgeOptions options_;
   PointSamplerOptions sampler_options_;
   ClassTable classes_;
+  ClassEvidenceForm class_form_ = ClassEvidenceForm::kProbabilities;
+  bool fallback_to_canny_ = true;
   std::unique_ptr<InputRejections> rejections_;
   MessageTracer tracer_;
   ros::Publisher frame_publisher_;
   image_transport::Publisher edge_image_publisher_;
   image_transport::CameraSubscriber camera_subscriber_;
-  ros::Time last_stamp_;  // stamp of the last accepted frame (the camera callback is serialized)
+  message_filters::Subscriber<sensor_msgs::CompressedImage> compressed_subscriber_;
+  message_filters::Subscriber<sensor_msgs::CameraInfo> info_subscriber_;
+  std::unique_ptr<CompressedSync> compressed_sync_;
+  ros::Subscriber class_subscriber_, edge_subscriber_;
+  ros::WallTimer expiry_timer_;
+  std::mutex mutex_;  // guards everything below and serializes all callbacks (frames leave in stamp order)
+  std::unique_ptr<FramePairing> pairing_;
+  ros::Time last_stamp_;  // stamp of the last accepted image
 };
 
 }  // namespace semantic_edge_vo

@@ -171,3 +171,27 @@ TEST(SemanticEdgeExtractor, OptionsAreValidated) {
 
 }  // namespace
 }  // namespace semantic_edge_vo
+
+namespace semantic_edge_vo {
+namespace {
+
+TEST(SemanticEdgeExtractor, LeavesItsInputsUntouchedAndRepeats) {
+  const cv::Mat gray = boundaryImage(), gray_before = gray.clone();
+  cv::Mat edge_map(kHeight, kWidth, CV_32F, cv::Scalar(0));
+  edge_map.col(30).setTo(0.9);
+  const cv::Mat edge_map_before = edge_map.clone();
+  const ClassEvidence classes{ClassEvidenceForm::kProbabilities, regionProbabilities(), kClasses};
+  SemanticEdgeOptions options = optionsFor(IntakeMode::kFused);
+  options.canny.blur_sigma = 1.0;
+  const SemanticEdgeExtractor extractor(options);
+  EdgeSet first, second;
+  ASSERT_FALSE(extractor.extract(gray, classes, cv::Mat(), &first));
+  ASSERT_FALSE(extractor.extract(gray, classes, cv::Mat(), &second));
+  EXPECT_EQ(first.u, second.u) << "the same input gives the same edges";
+  ASSERT_FALSE(extractor.extract(gray, classes, edge_map, &second));
+  EXPECT_EQ(cv::norm(gray, gray_before, cv::NORM_INF), 0.0) << "the image was modified";
+  EXPECT_EQ(cv::norm(edge_map, edge_map_before, cv::NORM_INF), 0.0) << "the edge map was modified";
+}
+
+}  // namespace
+}  // namespace semantic_edge_vo

@@ -1,0 +1,112 @@
+// Segmenter: image -> per-pixel class probabilities (sensor_msgs/Image 32FC<C> or 8UC<C>) from an
+// OpenCV dnn model, for the EdgeIntake's fused mode; reports its time per frame.
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+#include <cv_bridge/cv_bridge.h>
+#include <image_transport/image_transport.h>
+#include <nodelet/nodelet.h>
+#include <pluginlib/class_list_macros.hpp>
+#include <sensor_msgs/image_encodings.h>
+#include <std_msgs/Float32.h>
+
+#include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/segmenter.h"
+#include "semantic_edge_vo/ros/input_rejections.h"
+#include "semantic_edge_vo/ros/intake_options_loading.h"
+#include "semantic_edge_vo/ros/options_loading.h"
+
+namespace semantic_edge_vo {
+namespace enc = sensor_msgs::image_encodings;
+
+class SegmenterNodelet : public nodelet::Nodelet {
+ private:
+  void onInit() override {
+    ros::NodeHandle& node = getNodeHandle();
+    ros::NodeHandle& private_node = getPrivateNodeHandle();
+    rejections_ = std::make_unique<InputRejections>(getName());
+    ParameterLoader loader(private_node);
+    SegmenterOptions options;
+    std::string lists;
+    std::string error = loadSegmenterOptions(&loader, private_node, &options, &lists);
+    loader.load("output_bits", &output_bits_, "(32: 32FC<C> probabilities | 8: 8UC<C>, probability x 255)");
+    loader.load("log_every", &log_every_, "frames");
+    ClassTable classes;
+    if (error.empty()) error = loadClassTable(private_node, &classes);
+    NODELET_INFO_STREAM("parameters:" << loader.summary() << lists << "\n  classes = " << classes.size());
+    if (error.empty() && output_bits_ != 32 && output_bits_ != 8) error = "output_bits must be 32 or 8";
+    if (error.empty() && log_every_ < 1) error = "log_every must be >= 1";
+    if (error.empty()) {
+      segmenter_ = std::make_unique<Segmenter>(options, classes.size());
+      error = segmenter_->error();
+    }
+    if (!error.empty()) {
+      NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
+      return;
+    }
+    classes_ = classes.size();
+    probability_publisher_ = node.advertise<sensor_msgs::Image>("class_probabilities", 2);
+    time_publisher_ = node.advertise<std_msgs::Float32>("segmentation_time", 10);
+    image_transport::ImageTransport transport(node);
+    // Queue 1: a slow network keeps up by skipping frames, never by falling behind.
+    image_subscriber_ = transport.subscribe("image", 1, &SegmenterNodelet::onImage, this);
+  }
+
+  void onImage(const sensor_msgs::ImageConstPtr& image) {
+    static const std::set<std::string> kEncodings = {enc::MONO8, enc::BGR8, enc::RGB8, enc::BGRA8, enc::RGBA8, enc::MONO16};
+    if (!kEncodings.count(image->encoding)) {
+      rejections_->reject("image", "unsupported_encoding",
+                          "encoding '" + image->encoding + "' (expected mono8, mono16, bgr8, rgb8, bgra8 or rgba8)");
+      return;
+    }
+    cv_bridge::CvImageConstPtr input;
+    try {
+      input = cv_bridge::toCvShare(image, image->encoding == enc::MONO8 ? enc::MONO8 : enc::BGR8);
+    } catch (const cv_bridge::Exception& e) {
+      rejections_->reject("image", "conversion_failed", e.what());
+      return;
+    }
+    // Written in place into the outgoing message.
+    auto out = boost::make_shared<sensor_msgs::Image>();
+    out->header = image->header;
+    out->width = image->width;
+    out->height = image->height;
+    const int depth = output_bits_ == 32 ? CV_32F : CV_8U;
+    out->encoding = (output_bits_ == 32 ? "32FC" : "8UC") + std::to_string(classes_);
+    out->step = image->width * static_cast<std::uint32_t>(classes_ * output_bits_ / 8);
+    out->data.resize(static_cast<std::size_t>(out->step) * out->height);
+    cv::Mat probabilities(static_cast<int>(out->height), static_cast<int>(out->width), CV_MAKETYPE(depth, classes_), out->data.data());
+    double ms = 0.0;
+    try {
+      ms = segmenter_->segment(input->image, depth, &probabilities);
+    } catch (const cv::Exception& e) {
+      rejections_->reject("image", "segmentation_failed", e.what());
+      return;
+    }
+    probability_publisher_.publish(sensor_msgs::ImageConstPtr(out));
+    std_msgs::Float32 time;
+    time.data = static_cast<float>(ms);
+    time_publisher_.publish(time);
+    times_.push_back(ms);
+    if (static_cast<int>(times_.size()) >= log_every_) {
+      std::nth_element(times_.begin(), times_.begin() + static_cast<std::ptrdiff_t>(times_.size() / 2), times_.end());
+      NODELET_INFO_STREAM("segmentation: median " << times_[times_.size() / 2] << " ms per frame over the last "
+                                                  << times_.size() << " frames");
+      times_.clear();
+    }
+  }
+
+  std::unique_ptr<Segmenter> segmenter_;
+  std::unique_ptr<InputRejections> rejections_;
+  int classes_ = 0;
+  int output_bits_ = 32;
+  int log_every_ = 100;
+  std::vector<double> times_;  // ms of the frames since the last log (the image callback is serialized)
+  ros::Publisher probability_publisher_, time_publisher_;
+  image_transport::Subscriber image_subscriber_;
+};
+
+}  // namespace semantic_edge_vo
+
+PLUGINLIB_EXPORT_CLASS(semantic_edge_vo::SegmenterNodelet, nodelet::Nodelet)
