@@ -1,12 +1,12 @@
 #include "semantic_edge_vo/ros/sequence_bag_writer.h"
 
+#include <stdexcept>
+
 #include <cv_bridge/cv_bridge.h>
 #include <geometry_msgs/PoseStamped.h>
-#include <opencv2/imgcodecs.hpp>
 #include <sensor_msgs/CompressedImage.h>
 
 #include "semantic_edge_vo/ros/conversions.h"
-#include "semantic_edge_vo/synthetic/sequence_formats.h"
 
 namespace semantic_edge_vo {
 
@@ -40,18 +40,23 @@ void SequenceBagWriter::close() {
   open_ = false;
 }
 
-void SequenceBagWriter::writePng(const std::string& topic, const ros::Time& stamp, const cv::Mat& image,
+void SequenceBagWriter::writePng(const std::string& topic, const ros::Time& stamp, std::vector<std::uint8_t> png,
                                  const std::string& encoding) {
   sensor_msgs::CompressedImage message;
   message.header.stamp = stamp;
   message.header.frame_id = kCameraFrame;
   message.format = encoding + "; png compressed ";
-  cv::imencode(".png", image, message.data, {cv::IMWRITE_PNG_COMPRESSION, 1});
+  message.data = std::move(png);
   bag_.write(topic, stamp, message);
 }
 
-bool SequenceBagWriter::write(const synthetic::SyntheticFrame& frame) {
+bool SequenceBagWriter::write(const synthetic::SyntheticFrame& frame, const synthetic::EncodedFrame& files) {
   if (!open_ || !error_.empty()) return false;
+  auto encoded = [&](const char* folder) {
+    const std::vector<std::uint8_t>* bytes = files.find(folder);
+    if (!bytes) throw std::runtime_error(std::string("no encoded ") + folder + " image");
+    return *bytes;
+  };
   try {
     const ros::Time stamp(kBaseTime + frame.time);
     std_msgs::Header header;
@@ -61,16 +66,16 @@ bool SequenceBagWriter::write(const synthetic::SyntheticFrame& frame) {
     info_.header = header;
     bag_.write("/camera/image_rect", stamp, cv_bridge::CvImage(header, "mono8", frame.gray).toImageMsg());
     bag_.write("/camera/camera_info", stamp, info_);
-    writePng("/camera/color/image_rect/compressed", stamp, frame.color, "bgr8");
+    writePng("/camera/color/image_rect/compressed", stamp, encoded("image_2"), "bgr8");
     bag_.write("/camera/color/camera_info", stamp, info_);
     if (semantics_) {
-      writePng("/camera/semantics/class/compressed", stamp, frame.semantics.topClass(), "mono8");
-      writePng("/camera/semantics/class_confidence/compressed", stamp, frame.semantics.topConfidence(), "mono8");
-      writePng("/camera/semantics/edge_strength/compressed", stamp, frame.semantics.edge_strength, "mono8");
-      writePng("/camera/semantics/edge_classes/compressed", stamp, synthetic::maskBytes(frame.semantics.edge_classes),
-               "bgra8");
-      writePng("/camera/semantics/ground_truth_class/compressed", stamp, frame.class_id, "mono8");
+      writePng("/camera/semantics/class/compressed", stamp, synthetic::encodePng(frame.semantics.topClass()), "mono8");
+      writePng("/camera/semantics/class_confidence/compressed", stamp,
+               synthetic::encodePng(frame.semantics.topConfidence()), "mono8");
+      writePng("/camera/semantics/edge_strength/compressed", stamp, encoded("edge_strength"), "mono8");
+      writePng("/camera/semantics/edge_classes/compressed", stamp, encoded("edge_classes"), "bgra8");
     }
+    writePng("/camera/semantics/ground_truth_class/compressed", stamp, encoded("semantic"), "mono8");
     geometry_msgs::PoseStamped pose;
     pose.header.stamp = stamp;
     pose.header.frame_id = kWorldFrame;

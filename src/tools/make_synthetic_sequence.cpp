@@ -187,12 +187,14 @@ int main(int argc, char** argv) {
   FrameQueue queue;
   ProgressBar progress(args.frames, !args.quiet);
   std::string write_error;
+  const semantic_edge_vo::ClassTable classes = semantic_edge_vo::ClassTable::cityscapes();
   std::thread writer([&] {
     int written = 0;
     while (auto frame = queue.pop()) {
       if (!write_error.empty()) continue;  // drain
-      if (!directory.write(*frame)) write_error = directory.error();
-      else if (bag && !bag->write(*frame)) write_error = bag->error();
+      const EncodedFrame files = encodeFrame(*frame, options.semantics, classes);
+      if (!directory.write(*frame, files)) write_error = directory.error();
+      else if (bag && !bag->write(*frame, files)) write_error = bag->error();
       progress.update(++written);
     }
   });

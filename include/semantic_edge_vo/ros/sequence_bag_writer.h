@@ -5,6 +5,7 @@
 #include <sensor_msgs/CameraInfo.h>
 
 #include "semantic_edge_vo/camera.h"
+#include "semantic_edge_vo/synthetic/sequence_formats.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
 
 namespace semantic_edge_vo {
@@ -12,7 +13,8 @@ namespace semantic_edge_vo {
 /// Writes synthetic frames into a rosbag on conventional topics (docs/synthetic_sequences.md):
 ///   /camera/image_rect, /camera/camera_info                 sensor_msgs/Image mono8 + CameraInfo
 ///   /camera/color/image_rect/compressed, /camera/color/camera_info   PNG, bgr8
-///   /camera/semantics/{class, class_confidence, edge_strength, edge_classes, ground_truth_class}/compressed
+///   /camera/semantics/ground_truth_class/compressed         PNG mono8, Cityscapes train ids
+///   /camera/semantics/{class, class_confidence, edge_strength, edge_classes}/compressed  (with semantics)
 ///   /ground_truth/pose                                      geometry_msgs/PoseStamped, camera to world
 /// Stamps are kBaseTime + the frame time.
 class SequenceBagWriter {
@@ -26,11 +28,14 @@ class SequenceBagWriter {
   ~SequenceBagWriter();
 
   const std::string& error() const { return error_; }
-  bool write(const synthetic::SyntheticFrame& frame);
+  /// Writes one frame; `files` are its PNG files (synthetic::encodeFrame), reused for the
+  /// compressed topics.
+  bool write(const synthetic::SyntheticFrame& frame, const synthetic::EncodedFrame& files);
   void close();
 
  private:
-  void writePng(const std::string& topic, const ros::Time& stamp, const cv::Mat& image, const std::string& encoding);
+  void writePng(const std::string& topic, const ros::Time& stamp, std::vector<std::uint8_t> png,
+                const std::string& encoding);
 
   rosbag::Bag bag_;
   sensor_msgs::CameraInfo info_;

@@ -27,9 +27,9 @@ inline float latticeValue(std::int64_t ix, std::int64_t iy, std::uint32_t seed) 
 
 inline float smooth(float t) { return t * t * (3.0f - 2.0f * t); }
 
-/// Integral of a pulse train (pulse width w, period p) from 0 to x.
-inline double pulseIntegral(double x, double period, double width) {
-  const double cycles = std::floor(x / period);
+/// Integral of a pulse train (pulse width w, period p = 1 / inverse_period) from 0 to x.
+inline double pulseIntegral(double x, double period, double inverse_period, double width) {
+  const double cycles = std::floor(x * inverse_period);
   return cycles * width + std::min(x - cycles * period, width);
 }
 
@@ -77,13 +77,20 @@ inline float fractalNoise(double x, double y, double period, int octaves, double
 /// width `width` repeating every `period` (pulses start at 0, period, 2 period, ...): a pattern
 /// line box-filtered over a pixel, exact at every distance.
 inline float pulseCoverage(double x, double period, double width, double footprint) {
-  if (footprint < 1e-6) {
-    const double phase = x - std::floor(x / period) * period;
-    return phase < width ? 1.0f : 0.0f;
-  }
+  const double inverse_period = 1.0 / period;
+  if (footprint < 1e-6) return x - std::floor(x * inverse_period) * period < width ? 1.0f : 0.0f;
   if (footprint > period) footprint = period;  // wider filters only average to width / period
   const double h = 0.5 * footprint;
-  return static_cast<float>((detail::pulseIntegral(x + h, period, width) - detail::pulseIntegral(x - h, period, width)) / footprint);
+  return static_cast<float>((detail::pulseIntegral(x + h, period, inverse_period, width) -
+                             detail::pulseIntegral(x - h, period, inverse_period, width)) / footprint);
+}
+
+/// Fraction of [x - footprint/2, x + footprint/2] inside the single interval [start, start + width].
+inline float intervalCoverage(double x, double start, double width, double footprint) {
+  if (footprint < 1e-6) return x >= start && x < start + width ? 1.0f : 0.0f;
+  const double h = 0.5 * footprint;
+  const double overlap = std::min(x + h, start + width) - std::max(x - h, start);
+  return overlap > 0.0 ? static_cast<float>(std::min(overlap, footprint) / footprint) : 0.0f;
 }
 
 /// Smooth random field in [0, 1] of width x height (CV_32FC1) with features of about `scale` pixels:

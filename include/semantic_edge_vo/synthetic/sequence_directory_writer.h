@@ -2,7 +2,7 @@
 #include <fstream>
 #include <string>
 
-#include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/synthetic/sequence_formats.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
 
 namespace semantic_edge_vo {
@@ -17,12 +17,12 @@ class SequenceDirectoryWriter {
 
   /// Empty when fine, otherwise what failed (the writer then does nothing more).
   const std::string& error() const { return error_; }
-  /// Writes frame files and appends to times.txt and poses.txt. Frames must come in order 0, 1, ...
+  /// Writes the frame's files and appends to times.txt and poses.txt. Frames must come in order.
   bool write(const SyntheticFrame& frame);
+  /// The same with the frame's PNG files encoded already (encodeFrame()).
+  bool write(const SyntheticFrame& frame, const EncodedFrame& files);
 
  private:
-  bool writeImage(const std::string& folder, int index, const cv::Mat& image);
-
   std::string directory_;
   bool semantics_;
   ClassTable classes_;

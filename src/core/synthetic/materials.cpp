@@ -11,7 +11,6 @@ namespace synthetic {
 namespace {
 
 using Colour = Eigen::Vector3f;
-constexpr double kSingle = 1e4;  // period of a pulse train that is one pulse in practice
 
 /// A number in [0, 1) fixed by the variant bits and a salt.
 float pick(std::uint32_t variant, std::uint32_t salt) {
@@ -22,7 +21,7 @@ Colour lerp(const Colour& a, const Colour& b, float t) { return a + (b - a) * t;
 
 /// Coverage of the single interval [start, start + width] over the pixel.
 float band(double x, double start, double width, double footprint) {
-  return pulseCoverage(x - start, kSingle, width, footprint);
+  return intervalCoverage(x, start, width, footprint);
 }
 
 float noise(const ShadingPoint& p, double period, int octaves, std::uint32_t salt) {

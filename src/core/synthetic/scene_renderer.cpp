@@ -54,7 +54,7 @@ Eigen::Vector3f SceneRenderer::shade(const ProjectedPolygon& projected, float li
   point.extent_b = polygon.extent_b;
   point.variant = polygon.surface.variant;
   const Eigen::Vector3f reflected = albedo(polygon.surface.material, point, road_) * light;
-  const auto haze = static_cast<float>(1.0 - std::exp(-z / lighting_.fog_distance));
+  const float haze = 1.0f - std::exp(static_cast<float>(-z / lighting_.fog_distance));
   return reflected + (kHorizon - reflected) * haze;
 }
 

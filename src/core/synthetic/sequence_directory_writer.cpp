@@ -3,10 +3,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
+#include <ostream>
 
-#include <opencv2/imgcodecs.hpp>
-
-#include "semantic_edge_vo/synthetic/sequence_formats.h"
 
 namespace semantic_edge_vo {
 namespace synthetic {
@@ -68,33 +66,23 @@ SequenceDirectoryWriter::SequenceDirectoryWriter(const std::string& directory, c
   if (!calib || !metadata || !times_ || !poses_) error_ = "cannot write the text files in " + directory_;
 }
 
-bool SequenceDirectoryWriter::writeImage(const std::string& folder, int index, const cv::Mat& image) {
-  char name[16];
-  std::snprintf(name, sizeof(name), "%06d.png", index);
-  const std::string path = (fs::path(directory_) / folder / name).string();
-  bool written = false;
-  try {
-    written = cv::imwrite(path, image, {cv::IMWRITE_PNG_COMPRESSION, 1});
-  } catch (const cv::Exception& e) {
-    error_ = "cannot write " + path + ": " + e.what();
-    return false;
-  }
-  if (!written) error_ = "cannot write " + path;
-  return written;
+bool SequenceDirectoryWriter::write(const SyntheticFrame& frame) {
+  return write(frame, encodeFrame(frame, semantics_, classes_));
 }
 
-bool SequenceDirectoryWriter::write(const SyntheticFrame& frame) {
+bool SequenceDirectoryWriter::write(const SyntheticFrame& frame, const EncodedFrame& files) {
   if (!error_.empty()) return false;
-  const int i = frame.index;
-  bool ok = writeImage("image_0", i, frame.gray) && writeImage("image_2", i, frame.color) &&
-            writeImage("depth", i, encodeDepth(frame.depth)) && writeImage("semantic", i, frame.class_id) &&
-            writeImage("semantic_rgb", i, colorizeClasses(frame.class_id, classes_)) &&
-            writeImage("dynamic", i, frame.dynamic);
-  if (ok && semantics_)
-    ok = writeImage("edge_strength", i, frame.semantics.edge_strength) &&
-         writeImage("edge_classes", i, maskBytes(frame.semantics.edge_classes)) &&
-         writeImage("class_probability", i, frame.semantics.class_probability);
-  if (!ok) return false;
+  char name[16];
+  std::snprintf(name, sizeof(name), "%06d.png", frame.index);
+  for (const auto& [folder, bytes] : files.files) {
+    const fs::path path = fs::path(directory_) / folder / name;
+    std::ofstream file(path, std::ios::binary);
+    file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    if (!file) {
+      error_ = "cannot write " + path.string();
+      return false;
+    }
+  }
   times_ << std::scientific << std::setprecision(6) << frame.time << '\n';
   const Eigen::Matrix<double, 3, 4> pose = frame.T_world_cam.matrix().topRows<3>();
   poses_ << std::scientific << std::setprecision(9);

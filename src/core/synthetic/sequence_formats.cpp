@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <opencv2/imgcodecs.hpp>
+
 namespace semantic_edge_vo {
 namespace synthetic {
 
@@ -38,6 +40,35 @@ cv::Mat masksFromBytes(const cv::Mat& bytes) {
   cv::Mat masks(bytes.rows, bytes.cols, CV_32SC1);
   for (int y = 0; y < bytes.rows; ++y) std::memcpy(masks.ptr(y), bytes.ptr(y), static_cast<std::size_t>(bytes.cols) * 4);
   return masks;
+}
+
+std::vector<std::uint8_t> encodePng(const cv::Mat& image) {
+  std::vector<std::uint8_t> bytes;
+  cv::imencode(".png", image, bytes, {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_RLE});
+  return bytes;
+}
+
+const std::vector<std::uint8_t>* EncodedFrame::find(const std::string& folder) const {
+  for (const auto& file : files)
+    if (file.first == folder) return &file.second;
+  return nullptr;
+}
+
+EncodedFrame encodeFrame(const SyntheticFrame& frame, bool semantics, const ClassTable& classes) {
+  EncodedFrame encoded;
+  encoded.index = frame.index;
+  encoded.files = {{"image_0", encodePng(frame.gray)},
+                   {"image_2", encodePng(frame.color)},
+                   {"depth", encodePng(encodeDepth(frame.depth))},
+                   {"semantic", encodePng(frame.class_id)},
+                   {"semantic_rgb", encodePng(colorizeClasses(frame.class_id, classes))},
+                   {"dynamic", encodePng(frame.dynamic)}};
+  if (semantics) {
+    encoded.files.emplace_back("edge_strength", encodePng(frame.semantics.edge_strength));
+    encoded.files.emplace_back("edge_classes", encodePng(maskBytes(frame.semantics.edge_classes)));
+    encoded.files.emplace_back("class_probability", encodePng(frame.semantics.class_probability));
+  }
+  return encoded;
 }
 
 cv::Mat colorizeClasses(const cv::Mat& class_id, const ClassTable& table) {
