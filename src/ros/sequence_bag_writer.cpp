@@ -7,6 +7,7 @@
 #include <sensor_msgs/CompressedImage.h>
 
 #include "semantic_edge_vo/ros/conversions.h"
+#include "semantic_edge_vo/synthetic/sequence_formats.h"
 
 namespace semantic_edge_vo {
 
@@ -27,6 +28,7 @@ SequenceBagWriter::SequenceBagWriter(const std::string& path, const PinholeCamer
     : info_(cameraInfoOf(camera, kCameraFrame)), semantics_(semantics) {
   try {
     bag_.open(path, rosbag::bagmode::Write);
+    bag_.setCompression(rosbag::compression::LZ4);
     open_ = true;
   } catch (const rosbag::BagException& e) {
     error_ = "cannot open the bag " + path + ": " + e.what();
@@ -68,14 +70,14 @@ bool SequenceBagWriter::write(const synthetic::SyntheticFrame& frame, const synt
     bag_.write("/camera/camera_info", stamp, info_);
     writePng("/camera/color/image_rect/compressed", stamp, encoded("image_2"), "bgr8");
     bag_.write("/camera/color/camera_info", stamp, info_);
+    // Raw images in the forms EdgeIntake reads (the bag's LZ4 chunks keep them small on disk).
     if (semantics_) {
-      writePng("/camera/semantics/class/compressed", stamp, synthetic::encodePng(frame.semantics.topClass()), "mono8");
-      writePng("/camera/semantics/class_confidence/compressed", stamp,
-               synthetic::encodePng(frame.semantics.topConfidence()), "mono8");
-      writePng("/camera/semantics/edge_strength/compressed", stamp, encoded("edge_strength"), "mono8");
-      writePng("/camera/semantics/edge_classes/compressed", stamp, encoded("edge_classes"), "bgra8");
+      bag_.write("/camera/semantics/class_labels", stamp,
+                 cv_bridge::CvImage(header, "8UC2", synthetic::classLabels(frame.semantics)).toImageMsg());
+      bag_.write("/camera/semantics/edge_bitmask", stamp,
+                 cv_bridge::CvImage(header, "8UC4", synthetic::packEdgeBitmask(frame.semantics)).toImageMsg());
     }
-    writePng("/camera/semantics/ground_truth_class/compressed", stamp, encoded("semantic"), "mono8");
+    bag_.write("/camera/semantics/ground_truth_class", stamp, cv_bridge::CvImage(header, "mono8", frame.class_id).toImageMsg());
     geometry_msgs::PoseStamped pose;
     pose.header.stamp = stamp;
     pose.header.frame_id = kWorldFrame;

@@ -30,11 +30,17 @@ TEST(SyntheticOutput, DepthAndMasksSurviveTheirPngFormats) {
       const float expected = truth > kMaxEncodedDepth ? 0.0f : truth;
       EXPECT_NEAR(decoded.at<float>(y, x), expected, 0.5 / kDepthScale + 1e-6);
     }
-  cv::Mat masks(3, 3, CV_32SC1);
-  cv::randu(masks, 0, 1 << 19);
-  masks.at<std::int32_t>(2, 2) = (1 << 18) | 1;
-  cv::imencode(".png", maskBytes(masks), png);
-  EXPECT_EQ(cv::norm(masksFromBytes(cv::imdecode(png, cv::IMREAD_UNCHANGED)), masks, cv::NORM_INF), 0.0);
+  SemanticNetworkOutput semantics;
+  semantics.edge_classes.create(3, 3, CV_32SC1);
+  cv::randu(semantics.edge_classes, 0, 1 << 19);
+  semantics.edge_classes.at<std::int32_t>(2, 2) = (1 << 18) | 1;
+  semantics.edge_strength.create(3, 3, CV_8UC1);
+  cv::randu(semantics.edge_strength, 0, 256);
+  png = encodePng(packEdgeBitmask(semantics));
+  cv::Mat strength, classes;
+  unpackEdgeBitmask(cv::imdecode(png, cv::IMREAD_UNCHANGED), &strength, &classes);
+  EXPECT_EQ(cv::norm(classes, semantics.edge_classes, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(strength, semantics.edge_strength, cv::NORM_INF), 0.0);
 }
 
 TEST(SyntheticOutput, WritesTheKittiLayout) {
@@ -47,8 +53,8 @@ TEST(SyntheticOutput, WritesTheKittiLayout) {
     ASSERT_EQ(writer.error(), "");
     for (int i = 0; i < 3; ++i) ASSERT_TRUE(writer.write(sequence.frame(i))) << writer.error();
   }
-  for (const char* folder : {"image_0", "image_2", "depth", "semantic", "semantic_rgb", "dynamic", "edge_strength",
-                             "edge_classes", "class_probability"})
+  for (const char* folder :
+       {"image_0", "image_2", "depth", "semantic", "semantic_rgb", "dynamic", "edge_bitmask", "class_probability"})
     EXPECT_TRUE(fs::exists(directory / folder / "000002.png")) << folder;
   const cv::Mat gray = cv::imread((directory / "image_0" / "000001.png").string(), cv::IMREAD_UNCHANGED);
   EXPECT_EQ(gray.type(), CV_8UC1);

@@ -13,10 +13,12 @@ namespace semantic_edge_vo {
 /// Writes synthetic frames into a rosbag on conventional topics (docs/synthetic_sequences.md):
 ///   /camera/image_rect, /camera/camera_info                 sensor_msgs/Image mono8 + CameraInfo
 ///   /camera/color/image_rect/compressed, /camera/color/camera_info   PNG, bgr8
-///   /camera/semantics/ground_truth_class/compressed         PNG mono8, Cityscapes train ids
-///   /camera/semantics/{class, class_confidence, edge_strength, edge_classes}/compressed  (with semantics)
+///   /camera/semantics/ground_truth_class                    Image mono8, Cityscapes train ids
+///   /camera/semantics/class_labels                          Image 8UC2 (class, confidence x 255): labels form
+///   /camera/semantics/edge_bitmask                          Image 8UC4 (class bits 0..23, strength x 255): bitmask form
 ///   /ground_truth/pose                                      geometry_msgs/PoseStamped, camera to world
-/// Stamps are kBaseTime + the frame time.
+/// (the class topics in EdgeIntake's class_format labels and bitmask). Stamps are kBaseTime + the
+/// frame time; chunks are LZ4-compressed (the label maps shrink a hundredfold, playback is unchanged).
 class SequenceBagWriter {
  public:
   static constexpr double kBaseTime = 1600000000.0;  ///< s (2020-09-13), stamp of frame 0
@@ -28,8 +30,8 @@ class SequenceBagWriter {
   ~SequenceBagWriter();
 
   const std::string& error() const { return error_; }
-  /// Writes one frame; `files` are its PNG files (synthetic::encodeFrame), reused for the
-  /// compressed topics.
+  /// Writes one frame; `files` are its PNG files (synthetic::encodeFrame), the colour one reused
+  /// for the compressed colour topic.
   bool write(const synthetic::SyntheticFrame& frame, const synthetic::EncodedFrame& files);
   void close();
 

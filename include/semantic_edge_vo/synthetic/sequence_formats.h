@@ -23,11 +23,16 @@ cv::Mat encodeDepth(const cv::Mat& depth);
 /// CV_16UC1 depth PNG image -> CV_32FC1 metres (0 where unknown).
 cv::Mat decodeDepth(const cv::Mat& encoded);
 
-/// CV_32SC1 class bit masks as a CV_8UC4 image sharing the same bytes: byte k of the little-endian
-/// 32-bit mask is channel k as cv::imread returns it (a no-copy view).
-cv::Mat maskBytes(const cv::Mat& masks);
-/// The inverse: a CV_8UC4 image read with cv::IMREAD_UNCHANGED -> CV_32SC1 masks.
-cv::Mat masksFromBytes(const cv::Mat& bytes);
+/// Edge classes and strength in the project's compact bitmask form (ClassEvidenceForm::kBitmask,
+/// what EdgeIntake reads with class_format: bitmask): CV_8UC4, bytes 0..2 = class bits 0..23
+/// (byte 0 = bits 0..7), byte 3 = edge probability x 255. Bits above 23 are dropped (19 classes).
+cv::Mat packEdgeBitmask(const SemanticNetworkOutput& semantics);
+/// The inverse: strength CV_8UC1 and classes CV_32SC1 from a packed CV_8UC4 image.
+void unpackEdgeBitmask(const cv::Mat& packed, cv::Mat* strength, cv::Mat* classes);
+
+/// Most likely class and its confidence, CV_8UC2 (class, probability x 255): the compact labels form
+/// (ClassEvidenceForm::kLabels, class_format: labels). Channels 0 and 1 of class_probability.
+cv::Mat classLabels(const SemanticNetworkOutput& semantics);
 
 /// PNG bytes of an image (fast settings: zlib level 1, run-length strategy, which suits noisy
 /// photographs and flat label maps alike).

@@ -13,7 +13,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const char* const kImageFolders[] = {"image_0", "image_2", "depth", "semantic", "semantic_rgb", "dynamic"};
-const char* const kSemanticFolders[] = {"edge_strength", "edge_classes", "class_probability"};
+const char* const kSemanticFolders[] = {"edge_bitmask", "class_probability"};
 
 void writeProjection(std::ostream& out, const char* name, const PinholeCamera& c) {
   out << name << std::scientific << std::setprecision(12) << ' ' << c.fx << ' ' << 0.0 << ' ' << c.cx << ' ' << 0.0 << ' '

@@ -29,17 +29,40 @@ cv::Mat decodeDepth(const cv::Mat& encoded) {
   return depth;
 }
 
-cv::Mat maskBytes(const cv::Mat& masks) {
-  CV_Assert(masks.type() == CV_32SC1);
-  static_assert(sizeof(std::int32_t) == 4, "4 bytes per mask");
-  return cv::Mat(masks.rows, masks.cols, CV_8UC4, const_cast<std::uint8_t*>(masks.data), masks.step);
+cv::Mat packEdgeBitmask(const SemanticNetworkOutput& semantics) {
+  CV_Assert(semantics.edge_strength.type() == CV_8UC1 && semantics.edge_classes.type() == CV_32SC1);
+  cv::Mat packed(semantics.edge_strength.size(), CV_8UC4);
+  for (int y = 0; y < packed.rows; ++y) {
+    const std::uint8_t* strength = semantics.edge_strength.ptr<std::uint8_t>(y);
+    const std::int32_t* classes = semantics.edge_classes.ptr<std::int32_t>(y);
+    auto* out = packed.ptr<cv::Vec4b>(y);
+    for (int x = 0; x < packed.cols; ++x) {
+      const auto bits = static_cast<std::uint32_t>(classes[x]);
+      out[x] = cv::Vec4b(static_cast<std::uint8_t>(bits), static_cast<std::uint8_t>(bits >> 8),
+                         static_cast<std::uint8_t>(bits >> 16), strength[x]);
+    }
+  }
+  return packed;
 }
 
-cv::Mat masksFromBytes(const cv::Mat& bytes) {
-  CV_Assert(bytes.type() == CV_8UC4);
-  cv::Mat masks(bytes.rows, bytes.cols, CV_32SC1);
-  for (int y = 0; y < bytes.rows; ++y) std::memcpy(masks.ptr(y), bytes.ptr(y), static_cast<std::size_t>(bytes.cols) * 4);
-  return masks;
+void unpackEdgeBitmask(const cv::Mat& packed, cv::Mat* strength, cv::Mat* classes) {
+  CV_Assert(packed.type() == CV_8UC4);
+  strength->create(packed.size(), CV_8UC1);
+  classes->create(packed.size(), CV_32SC1);
+  for (int y = 0; y < packed.rows; ++y) {
+    const auto* in = packed.ptr<cv::Vec4b>(y);
+    for (int x = 0; x < packed.cols; ++x) {
+      classes->at<std::int32_t>(y, x) = static_cast<std::int32_t>(in[x][0] | in[x][1] << 8 | in[x][2] << 16);
+      strength->at<std::uint8_t>(y, x) = in[x][3];
+    }
+  }
+}
+
+cv::Mat classLabels(const SemanticNetworkOutput& semantics) {
+  cv::Mat labels(semantics.class_probability.size(), CV_8UC2);
+  const int pairs[] = {0, 0, 1, 1};
+  cv::mixChannels(&semantics.class_probability, 1, &labels, 1, pairs, 2);
+  return labels;
 }
 
 std::vector<std::uint8_t> encodePng(const cv::Mat& image) {
@@ -64,8 +87,7 @@ EncodedFrame encodeFrame(const SyntheticFrame& frame, bool semantics, const Clas
                    {"semantic_rgb", encodePng(colorizeClasses(frame.class_id, classes))},
                    {"dynamic", encodePng(frame.dynamic)}};
   if (semantics) {
-    encoded.files.emplace_back("edge_strength", encodePng(frame.semantics.edge_strength));
-    encoded.files.emplace_back("edge_classes", encodePng(maskBytes(frame.semantics.edge_classes)));
+    encoded.files.emplace_back("edge_bitmask", encodePng(packEdgeBitmask(frame.semantics)));
     encoded.files.emplace_back("class_probability", encodePng(frame.semantics.class_probability));
   }
   return encoded;
