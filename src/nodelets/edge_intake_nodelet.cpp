@@ -7,6 +7,7 @@
 #include <message_filters/time_synchronizer.h>
 
 #include <cv_bridge/cv_bridge.h>
+#include <image_transport/camera_common.h>
 #include <image_transport/image_transport.h>
 #include <nodelet/nodelet.h>
 #include <opencv2/imgproc.hpp>

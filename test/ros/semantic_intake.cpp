@@ -1,0 +1,239 @@
+// rostest: the fused intake pairs class maps by stamp, waits for late ones, falls back to Canny on
+// missing ones, refuses bad class maps by name and keeps running; compressed images are taken; the
+// Segmenter publishes ENet class probabilities (skipped without the model).
+#include <filesystem>
+#include <functional>
+#include <mutex>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Log.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Image.h>
+#include <std_msgs/Float32.h>
+
+#include "semantic_edge_vo/SemanticEdgeFrame.h"
+
+namespace semantic_edge_vo {
+namespace {
+
+constexpr int kWidth = 320, kHeight = 240, kClasses = 19, kRoad = 0, kCar = 13, kBoundary = 150;
+const std::string kModel = std::string(SEVO_SHARED_DIR) + "/models/enet_cityscapes/model-best.opencv.net";
+const std::string kColorFrame = std::string(SEVO_SHARED_DIR) + "/data/kitti_odometry/color_frames/kitti06-12-color.png";
+
+/// Dark road left of column kBoundary, bright car right of it.
+cv::Mat boundaryImage() {
+  cv::Mat gray(kHeight, kWidth, CV_8U, cv::Scalar(60));
+  gray.colRange(kBoundary, kWidth).setTo(190);
+  return gray;
+}
+
+sensor_msgs::Image imageMsg(const cv::Mat& mat, const std::string& encoding, const ros::Time& stamp) {
+  sensor_msgs::Image msg;
+  msg.header.stamp = stamp;
+  msg.header.frame_id = "camera_optical_frame";
+  msg.width = static_cast<std::uint32_t>(mat.cols);
+  msg.height = static_cast<std::uint32_t>(mat.rows);
+  msg.encoding = encoding;
+  msg.step = static_cast<std::uint32_t>(mat.cols * mat.elemSize());
+  msg.data.assign(mat.data, mat.data + mat.total() * mat.elemSize());
+  return msg;
+}
+
+sensor_msgs::CameraInfo infoMsg(const ros::Time& stamp) {
+  sensor_msgs::CameraInfo info;
+  info.header.stamp = stamp;
+  info.header.frame_id = "camera_optical_frame";
+  info.width = kWidth;
+  info.height = kHeight;
+  info.K = {300, 0, 160, 0, 300, 120, 0, 0, 1};
+  info.P = {300, 0, 160, 0, 0, 300, 120, 0, 0, 0, 1, 0};
+  return info;
+}
+
+/// Road 0.9 left, car 0.8 right, the rest spread thinly.
+cv::Mat probabilities(int classes = kClasses) {
+  cv::Mat p(kHeight, kWidth, CV_32FC(classes));
+  p.reshape(1).setTo(0.1 / (classes - 1));  // Scalar fills take at most 4 channels
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) p.ptr<float>(y)[x * classes + (x < kBoundary ? kRoad : kCar)] = x < kBoundary ? 0.9f : 0.8f;
+  return p;
+}
+
+class SemanticIntake : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    image_publisher_ = node_.advertise<sensor_msgs::Image>("/camera/image_rect", 10);
+    info_publisher_ = node_.advertise<sensor_msgs::CameraInfo>("/camera/camera_info", 10);
+    class_publisher_ = node_.advertise<sensor_msgs::Image>("/class_probabilities", 10);
+    subscribers_.push_back(node_.subscribe<SemanticEdgeFrame>("/edge_frame", 20, [this](const SemanticEdgeFrameConstPtr& f) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      frames_[f->header.stamp] = f;
+    }));
+    subscribers_.push_back(node_.subscribe<rosgraph_msgs::Log>("/rosout", 100, [this](const rosgraph_msgs::LogConstPtr& log) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (log->level >= rosgraph_msgs::Log::WARN) logs_.push_back(log->msg);
+    }));
+    spinner_.start();
+    waitFor([&] { return image_publisher_.getNumSubscribers() > 0 && class_publisher_.getNumSubscribers() > 0; }, 20.0);
+    ASSERT_GT(class_publisher_.getNumSubscribers(), 0u) << "EdgeIntake never subscribed to class_probabilities";
+    ros::WallDuration(1.0).sleep();
+    stamp_ = ros::Time::now();
+  }
+
+  bool waitFor(const std::function<bool()>& condition, double seconds = 5.0) {
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(seconds);
+    while (ros::WallTime::now() < deadline) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (condition()) return true;
+      }
+      ros::WallDuration(0.05).sleep();
+    }
+    return false;
+  }
+  SemanticEdgeFrameConstPtr frameAt(const ros::Time& stamp, double seconds = 5.0) {
+    SemanticEdgeFrameConstPtr frame;
+    waitFor([&] { return frames_.count(stamp) && (frame = frames_[stamp]); }, seconds);
+    return frame;
+  }
+  bool logged(const std::string& a, const std::string& b) {
+    return waitFor([&] {
+      for (const std::string& m : logs_)
+        if (m.find(a) != std::string::npos && m.find(b) != std::string::npos) return true;
+      return false;
+    });
+  }
+  /// Image and camera_info at a new stamp, then the class map (if any) after `delay` s.
+  ros::Time send(const sensor_msgs::Image* classes, double delay = 0.0) {
+    const ros::Time stamp = stamp_ += ros::Duration(0.1);
+    image_publisher_.publish(imageMsg(boundaryImage(), "mono8", stamp));
+    info_publisher_.publish(infoMsg(stamp));
+    if (classes) {
+      ros::WallDuration(delay).sleep();
+      sensor_msgs::Image msg = *classes;
+      msg.header.stamp = stamp;
+      class_publisher_.publish(msg);
+    }
+    return stamp;
+  }
+
+  ros::NodeHandle node_;
+  ros::AsyncSpinner spinner_{2};
+  ros::Publisher image_publisher_, info_publisher_, class_publisher_;
+  std::vector<ros::Subscriber> subscribers_;
+  std::mutex mutex_;
+  std::map<ros::Time, SemanticEdgeFrameConstPtr> frames_;
+  std::vector<std::string> logs_;
+  ros::Time stamp_;
+};
+
+TEST_F(SemanticIntake, FusedPairingFallbackAndBadClassMaps) {
+  const sensor_msgs::Image good = imageMsg(probabilities(), "32FC19", ros::Time());
+  for (double delay : {0.0, 0.15}) {  // on time, and late within class_wait
+    const SemanticEdgeFrameConstPtr frame = frameAt(send(&good, delay));
+    ASSERT_TRUE(frame) << "no fused frame (class map " << delay << " s late)";
+    EXPECT_EQ(frame->intake_mode, "fused");
+    ASSERT_EQ(frame->class_names.size(), static_cast<std::size_t>(kClasses));
+    EXPECT_EQ(frame->class_names[kCar], "car");
+    std::size_t both = 0;
+    for (std::uint32_t mask : frame->edge_class_mask) both += mask == ((1u << kRoad) | (1u << kCar));
+    EXPECT_GT(both, static_cast<std::size_t>(kHeight / 2)) << "boundary edges must carry road and car";
+  }
+  // No class map: after class_wait, Canny edges with every class bit.
+  const SemanticEdgeFrameConstPtr fallback = frameAt(send(nullptr));
+  ASSERT_TRUE(fallback) << "no fallback frame";
+  EXPECT_EQ(fallback->intake_mode, "canny");
+  ASSERT_FALSE(fallback->edge_class_mask.empty());
+  EXPECT_EQ(fallback->edge_class_mask[0], (1u << kClasses) - 1u);
+  EXPECT_TRUE(logged("no class map", "Canny"));
+
+  struct Case {
+    std::string reason;
+    sensor_msgs::Image classes;
+  };
+  cv::Mat nan_map = probabilities(), negative_map = probabilities();
+  nan_map.ptr<float>(5)[7] = std::nanf("");
+  negative_map.ptr<float>(100)[300] = -0.5f;
+  cv::Mat small;
+  cv::resize(probabilities(), small, cv::Size(kWidth / 2, kHeight / 2), 0, 0, cv::INTER_NEAREST);
+  std::vector<Case> cases = {{"channel_count_mismatch", imageMsg(probabilities(18), "32FC18", ros::Time())},
+                             {"size_mismatch", imageMsg(small, "32FC19", ros::Time())},
+                             {"invalid_probability", imageMsg(nan_map, "32FC19", ros::Time())},
+                             {"invalid_probability", imageMsg(negative_map, "32FC19", ros::Time())},
+                             {"unsupported_encoding", imageMsg(probabilities(), "32FC19", ros::Time())}};
+  cases.back().classes.encoding = "64FC19";
+  for (const Case& c : cases) {
+    const ros::Time stamp = send(&c.classes);
+    EXPECT_TRUE(logged("dropped class map: " + c.reason, "")) << "no named error for " << c.reason;
+    EXPECT_FALSE(frameAt(stamp, 0.5)) << "a frame with a bad class map must be dropped (" << c.reason << ")";
+    EXPECT_TRUE(frameAt(send(&good))) << "good frames stopped flowing after " << c.reason;
+  }
+  // 8-bit probabilities are taken as well.
+  cv::Mat bytes;
+  probabilities().convertTo(bytes, CV_8U, 255.0);
+  const sensor_msgs::Image good8 = imageMsg(bytes, "8UC19", ros::Time());
+  const SemanticEdgeFrameConstPtr frame8 = frameAt(send(&good8));
+  ASSERT_TRUE(frame8);
+  EXPECT_EQ(frame8->intake_mode, "fused");
+}
+
+TEST_F(SemanticIntake, CompressedImagesAreDecoded) {
+  ros::Publisher compressed = node_.advertise<sensor_msgs::CompressedImage>("/cam2/image/compressed", 5);
+  ros::Publisher info = node_.advertise<sensor_msgs::CameraInfo>("/cam2/camera_info", 5);
+  SemanticEdgeFrameConstPtr frame;
+  ros::Subscriber frames = node_.subscribe<SemanticEdgeFrame>("/cam2/edge_frame", 5, [&](const SemanticEdgeFrameConstPtr& f) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    frame = f;
+  });
+  ASSERT_TRUE(waitFor([&] { return compressed.getNumSubscribers() > 0 && info.getNumSubscribers() > 0; }, 10.0));
+  ros::WallDuration(0.5).sleep();
+  sensor_msgs::CompressedImage msg;
+  msg.header.stamp = ros::Time::now();
+  msg.format = "mono8; png compressed";
+  cv::imencode(".png", boundaryImage(), msg.data);
+  compressed.publish(msg);
+  info.publish(infoMsg(msg.header.stamp));
+  ASSERT_TRUE(waitFor([&] { return frame != nullptr; })) << "no frame from the compressed intake";
+  EXPECT_EQ(frame->image.width, static_cast<std::uint32_t>(kWidth));
+  EXPECT_GT(frame->edge_u.size(), static_cast<std::size_t>(kHeight / 2));
+}
+
+TEST_F(SemanticIntake, SegmenterPublishesEnetProbabilities) {
+  if (!std::filesystem::exists(kModel) || !std::filesystem::exists(kColorFrame))
+    GTEST_SKIP() << "ENet model or KITTI colour frame absent (" << kModel << ", " << kColorFrame << ")";
+  ros::Publisher images = node_.advertise<sensor_msgs::Image>("/seg/image", 2);
+  sensor_msgs::ImageConstPtr result;
+  float ms = -1.0f;
+  ros::Subscriber probabilities = node_.subscribe<sensor_msgs::Image>("/seg/class_probabilities", 2, [&](const sensor_msgs::ImageConstPtr& p) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    result = p;
+  });
+  ros::Subscriber times = node_.subscribe<std_msgs::Float32>("/seg/segmentation_time", 2, [&](const std_msgs::Float32ConstPtr& t) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ms = t->data;
+  });
+  ASSERT_TRUE(waitFor([&] { return images.getNumSubscribers() > 0; }, 20.0)) << "the Segmenter never subscribed (model not loaded?)";
+  ros::WallDuration(0.5).sleep();
+  const cv::Mat colour = cv::imread(kColorFrame, cv::IMREAD_COLOR);
+  const ros::Time stamp = ros::Time::now();
+  images.publish(imageMsg(colour, "bgr8", stamp));
+  ASSERT_TRUE(waitFor([&] { return result != nullptr && ms > 0.0f; }, 20.0)) << "no class probabilities";
+  std::cout << "Segmenter (ENet 640x320) on " << colour.cols << "x" << colour.rows << ": " << ms << " ms\n";
+  EXPECT_EQ(result->encoding, "32FC19");
+  EXPECT_EQ(result->header.stamp, stamp);
+  EXPECT_EQ(result->width, static_cast<std::uint32_t>(colour.cols));
+  EXPECT_EQ(result->height, static_cast<std::uint32_t>(colour.rows));
+}
+
+}  // namespace
+}  // namespace semantic_edge_vo
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "semantic_intake_test");
+  return RUN_ALL_TESTS();
+}
