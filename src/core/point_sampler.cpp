@@ -20,10 +20,19 @@ cv::Mat centralGradientMagnitude(const cv::Mat& gray) {
   return magnitude;
 }
 
-float median(std::vector<float>* values) {
-  auto middle = values->begin() + static_cast<std::ptrdiff_t>(values->size() / 2);
-  std::nth_element(values->begin(), middle, values->end());
-  return *middle;
+/// Median of a block's gradient magnitudes from a histogram of 1-gray-level bins clamped at 49,
+/// as DSO's pixel selector computes its block thresholds (linear time, no sorting).
+float blockMedian(const cv::Mat& block) {
+  int histogram[50] = {0};
+  for (int y = 0; y < block.rows; ++y) {
+    const float* row = block.ptr<float>(y);
+    for (int x = 0; x < block.cols; ++x) ++histogram[std::min(49, static_cast<int>(row[x]))];
+  }
+  const int half = static_cast<int>(block.total() / 2);
+  int seen = 0;
+  for (int bin = 0; bin < 50; ++bin)
+    if ((seen += histogram[bin]) > half) return static_cast<float>(bin) + 0.5f;
+  return 49.5f;
 }
 
 }  // namespace
@@ -49,34 +58,40 @@ PointSample PointSampler::sample(const cv::Mat& gray, const EdgeSetView& edges) 
 std::vector<std::uint32_t> PointSampler::sampleEdges(const EdgeSetView& edges, int width, int height) const {
   const std::size_t n = edges.size();
   const auto wanted = static_cast<std::size_t>(options_.max_edge_points);
-  std::vector<std::uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  if (n <= wanted) return order;
+  std::vector<std::uint32_t> chosen(n);
+  std::iota(chosen.begin(), chosen.end(), 0u);
+  if (n <= wanted) return chosen;
 
   // A grid with about one cell per wanted point; each edge's rank within its cell (strongest first)
   // decides the round it is taken in, so every region gets its share before any gets a second.
   const int cell = std::max(2, static_cast<int>(std::sqrt(static_cast<double>(width) * height / wanted)));
-  const int cols = (width + cell - 1) / cell;
-  auto cellOf = [&](std::uint32_t i) {
+  const int cols = (width + cell - 1) / cell, rows = (height + cell - 1) / cell;
+  std::vector<std::uint32_t> cell_start(static_cast<std::size_t>(cols * rows) + 1, 0u), cell_of(n);
+  for (std::size_t i = 0; i < n; ++i) {
     const int cx = std::clamp(static_cast<int>(edges.u[i]) / cell, 0, cols - 1);
-    const int cy = std::clamp(static_cast<int>(edges.v[i]) / cell, 0, (height + cell - 1) / cell - 1);
-    return cy * cols + cx;
-  };
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const int ca = cellOf(a), cb = cellOf(b);
-    return ca != cb ? ca < cb : edges.strength[a] > edges.strength[b];
-  });
-  std::vector<std::uint32_t> rank(n);
-  for (std::size_t k = 0; k < n; ++k)
-    rank[order[k]] = (k > 0 && cellOf(order[k]) == cellOf(order[k - 1])) ? rank[order[k - 1]] + 1 : 0;
+    const int cy = std::clamp(static_cast<int>(edges.v[i]) / cell, 0, rows - 1);
+    cell_of[i] = static_cast<std::uint32_t>(cy * cols + cx);
+    ++cell_start[cell_of[i] + 1];
+  }
+  for (std::size_t c = 1; c < cell_start.size(); ++c) cell_start[c] += cell_start[c - 1];
+  std::vector<std::uint32_t> by_cell(n), fill(cell_start.begin(), cell_start.end() - 1);
+  for (std::uint32_t i = 0; i < n; ++i) by_cell[fill[cell_of[i]]++] = i;
 
-  std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return rank[a] != rank[b] ? rank[a] < rank[b] : edges.strength[a] > edges.strength[b];
-  });
-  order.resize(wanted);
-  std::sort(order.begin(), order.end());
-  return order;
+  const auto stronger = [&](std::uint32_t a, std::uint32_t b) {
+    return edges.strength[a] != edges.strength[b] ? edges.strength[a] > edges.strength[b] : a < b;
+  };
+  std::vector<std::uint32_t> rank(n);
+  for (std::size_t c = 0; c + 1 < cell_start.size(); ++c) {
+    const auto first = by_cell.begin() + cell_start[c], last = by_cell.begin() + cell_start[c + 1];
+    std::sort(first, last, stronger);
+    for (auto it = first; it != last; ++it) rank[*it] = static_cast<std::uint32_t>(it - first);
+  }
+  // Whole rounds first; the last, partial round takes its strongest edges.
+  std::nth_element(chosen.begin(), chosen.begin() + static_cast<std::ptrdiff_t>(wanted), chosen.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return rank[a] != rank[b] ? rank[a] < rank[b] : stronger(a, b); });
+  chosen.resize(wanted);
+  std::sort(chosen.begin(), chosen.end());
+  return chosen;
 }
 
 void PointSampler::sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, int count,
@@ -114,13 +129,10 @@ void PointSampler::sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, 
   // Sub-cells with about two candidates per wanted point, one candidate (the strongest pixel above
   // the threshold) per sub-cell, as DSO's pixel selector does.
   const int sub = std::max(2, static_cast<int>(std::sqrt(static_cast<double>(gray.cols) * gray.rows / (2.0 * count))));
-  std::vector<float> block_values;
   for (int by = 0; by < block_rows; ++by) {
     for (int bx = 0; bx < block_cols; ++bx) {
       const cv::Rect block_rect = cv::Rect(bx * block, by * block, block, block) & cv::Rect(0, 0, gray.cols, gray.rows);
-      const cv::Mat block_magnitude = magnitude(block_rect);
-      block_values.assign(block_magnitude.begin<float>(), block_magnitude.end<float>());
-      const float threshold = median(&block_values) + static_cast<float>(options_.support_threshold_offset);
+      const float threshold = blockMedian(magnitude(block_rect)) + static_cast<float>(options_.support_threshold_offset);
       const bool scarce = sampled_edges_in_block[static_cast<std::size_t>(by * block_cols + bx)] == 0;
       for (int sy = block_rect.y; sy < block_rect.br().y; sy += sub) {
         for (int sx = block_rect.x; sx < block_rect.br().x; sx += sub) {
