@@ -57,16 +57,16 @@ class EdgeRegistration {
   EdgeRegistrationResult align(const std::vector<ReferenceEdge>& edges, const NearestNeighborFieldView& field,
                                const Eigen::Isometry3d& T_target_ref_initial) const;
 
+  /// Residuals (with weights) at a pose and their robust cost; an association that finds nothing within the
+  /// truncation radius costs as much as a residual of that radius, so that costs at different poses
+  /// compare even when points lose or gain their matches.
+  double evaluate(const std::vector<ReferenceEdge>& edges, const NearestNeighborFieldView& field,
+                  const Eigen::Isometry3d& T_target_ref, std::vector<EdgeResidual>* out) const;
   /// Residuals of every association at a pose (exposed for tests and diagnostics).
   std::vector<EdgeResidual> residuals(const std::vector<ReferenceEdge>& edges, const NearestNeighborFieldView& field,
                                       const Eigen::Isometry3d& T_target_ref) const;
 
  private:
-  /// Residuals at a pose and their robust cost; an association that finds nothing within the
-  /// truncation radius costs as much as a residual of that radius, so that costs at different poses
-  /// compare even when points lose or gain their matches.
-  double evaluate(const std::vector<ReferenceEdge>& edges, const NearestNeighborFieldView& field,
-                  const Eigen::Isometry3d& T_target_ref, std::vector<EdgeResidual>* out) const;
   /// Appends the residual of `edge` against layer `layer`; false when nothing is within reach.
   bool residualFor(const ReferenceEdge& edge, const Eigen::Vector3d& p_target, const NearestNeighborFieldView& field,
                    int layer, std::vector<EdgeResidual>* out) const;

@@ -22,7 +22,7 @@ struct FieldOptions {
   FieldKind kind = FieldKind::kSnnf;
   int pyramid_levels = 4;        ///< level 0 is full resolution, each next level halves it
   int orientation_bins = 8;      ///< ONNF bins over 360 degrees of gradient direction
-  float truncation_radius = 32.0f;  ///< lookups farther than this find nothing, pixels of the queried level
+  float truncation_radius = 8.0f;   ///< lookups farther than this find nothing, pixels of the queried level (coarse levels reach far)
   int cell_size = 4;             ///< bucket side, pixels of each level (4: fastest lookups, see benchmark_fields)
 
   std::string validate() const;

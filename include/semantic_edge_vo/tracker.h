@@ -1,0 +1,80 @@
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "semantic_edge_vo/edge_registration.h"
+#include "semantic_edge_vo/keyframe.h"
+
+namespace semantic_edge_vo {
+
+struct TrackerOptions {
+  int levels = 4;                    ///< coarse-to-fine over levels-1 .. 0 (needs as many pyramid and field levels)
+  int iterations_per_level = 10;
+  double photometric_huber = 9.0;    ///< Huber threshold of gradient-magnitude residuals, gray levels / px
+  double photometric_sigma = 4.0;    ///< their scale when weighed against edge residuals, gray levels / px
+  double edge_huber = 1.5;           ///< Huber threshold of point-to-tangent residuals, px of the level
+  double edge_sigma = 1.0;           ///< their scale, px of the level
+  double edge_weight = 2.0;          ///< weight of edge residuals (paper III-C: more in tracking than in mapping)
+  double min_inlier_ratio = 0.5;     ///< lost when fewer photometric residuals are inliers at level 0
+  double min_points_in_view = 0.25;  ///< lost when fewer keyframe points project into the frame
+
+  std::string validate() const;
+};
+
+struct TrackingResult {
+  Eigen::Isometry3d T_cam_kf = Eigen::Isometry3d::Identity();  ///< maps keyframe points into the frame
+  bool ok = false;                   ///< the pose can be trusted
+  int guess = 0;                     ///< index of the initial guess that won
+  int iterations = 0;
+  int points_in_view = 0;
+  int photometric_residuals = 0, photometric_inliers = 0;
+  int edge_residuals = 0, edge_inliers = 0;
+  double photometric_rmse = 0.0;     ///< inliers, gray levels / px
+  double edge_rmse = 0.0;            ///< inliers, full-resolution px
+  double mean_flow = 0.0;            ///< mean displacement of the keyframe points, full-resolution px
+};
+
+/// Aligns frames to the active keyframe (paper III-C): photometric residuals on gradient magnitude
+/// over a small pixel pattern for every point, plus point-to-tangent residuals against the frame's
+/// nearest-neighbour field for edge points, Huber-weighted, Levenberg-Marquardt on SE(3),
+/// coarse to fine, from the best of several initial guesses.
+class Tracker {
+ public:
+  explicit Tracker(const TrackerOptions& options) : options_(options) {}
+
+  /// Precomputes what tracking against `keyframe` needs (reference patterns, edge points).
+  void setKeyframe(std::shared_ptr<const Keyframe> keyframe);
+  const std::shared_ptr<const Keyframe>& keyframe() const { return keyframe_; }
+
+  /// @param[in] frame pyramid of the frame
+  /// @param[in] field its nearest-neighbour field, or nullptr for photometric-only tracking
+  /// @param[in] guesses initial T_cam_kf candidates (constant velocity first)
+  TrackingResult track(const ImagePyramid& frame, const NearestNeighborFieldView* field,
+                       const std::vector<Eigen::Isometry3d>& guesses) const;
+
+ private:
+  struct Normal {
+    Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+    Vector6d b = Vector6d::Zero();
+  };
+  struct LevelReference {
+    std::vector<Eigen::Vector3f> pattern_points;  ///< per point, kPattern points in the keyframe frame
+    std::vector<float> pattern_values;            ///< gradient magnitude of the keyframe there
+    std::vector<int> point_index;                 ///< keyframe point of each pattern block
+  };
+  /// Cost of the level at a pose; fills the normal equations and `result`'s counts when asked.
+  double evaluate(int level, const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame,
+                  const NearestNeighborFieldView* field, Normal* normal, TrackingResult* result) const;
+  /// Levenberg-Marquardt at one level from `T`; returns the final cost.
+  double optimizeLevel(int level, const ImagePyramid& frame, const NearestNeighborFieldView* field,
+                       Eigen::Isometry3d* T, int* iterations) const;
+
+  TrackerOptions options_;
+  std::shared_ptr<const Keyframe> keyframe_;
+  std::vector<LevelReference> references_;
+  std::vector<ReferenceEdge> edges_;             ///< the keyframe's edge points with depth
+  std::vector<EdgeRegistration> edge_residuals_; ///< per level
+};
+
+}  // namespace semantic_edge_vo

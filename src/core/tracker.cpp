@@ -1,0 +1,226 @@
+#include "semantic_edge_vo/tracker.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "semantic_edge_vo/nearest_neighbor_field.h"
+
+namespace semantic_edge_vo {
+namespace {
+
+/// DSO's 8-pixel residual pattern, offsets in pixels of each level.
+constexpr int kPattern = 8;
+constexpr int kPatternOffsets[kPattern][2] = {{0, -2}, {-1, -1}, {1, -1}, {-2, 0}, {0, 0}, {2, 0}, {-1, 1}, {0, 2}};
+
+double huberCost(double r, double k) {
+  const double a = std::abs(r);
+  return a <= k ? 0.5 * r * r : k * (a - 0.5 * k);
+}
+
+/// Coarse levels use every n-th point: they only need to find the basin.
+int pointStride(int level) { return level >= 2 ? 1 << (level - 1) : 1; }
+
+}  // namespace
+
+std::string TrackerOptions::validate() const {
+  std::ostringstream error;
+  if (levels < 1 || levels > 8) error << "levels must be in [1, 8] (got " << levels << ")";
+  else if (iterations_per_level < 1) error << "iterations_per_level must be >= 1";
+  else if (!(photometric_huber > 0 && photometric_sigma > 0 && edge_huber > 0 && edge_sigma > 0))
+    error << "Huber thresholds and sigmas must be > 0";
+  else if (!(edge_weight >= 0)) error << "edge_weight must be >= 0";
+  else if (!(min_inlier_ratio >= 0 && min_inlier_ratio <= 1 && min_points_in_view >= 0 && min_points_in_view <= 1))
+    error << "min_inlier_ratio and min_points_in_view must be in [0, 1]";
+  return error.str();
+}
+
+void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
+  keyframe_ = std::move(keyframe);
+  const ImagePyramid& pyramid = *keyframe_->pyramid;
+  const int levels = std::min(options_.levels, pyramid.levels());
+  references_.assign(static_cast<std::size_t>(levels), LevelReference());
+  for (int l = 0; l < levels; ++l) {
+    const PyramidLevel& level = pyramid.level(l);
+    const float scale = static_cast<float>(std::ldexp(1.0, -l));
+    LevelReference& reference = references_[static_cast<std::size_t>(l)];
+    for (std::size_t i = 0; i < keyframe_->points.size(); i += static_cast<std::size_t>(pointStride(l))) {
+      const MapPoint& point = keyframe_->points[i];
+      if (!(point.inverse_depth > 0.0)) continue;
+      const float u = toLevel(point.u, scale), v = toLevel(point.v, scale);
+      if (!level.camera.contains(u, v, 3.0)) continue;
+      const double z = 1.0 / point.inverse_depth;
+      for (const auto& offset : kPatternOffsets) {
+        const float x = u + static_cast<float>(offset[0]), y = v + static_cast<float>(offset[1]);
+        reference.pattern_points.push_back(level.camera.backProject(x, y, z).cast<float>());
+        reference.pattern_values.push_back(sampleBilinear(level.gradient, x, y));
+      }
+      reference.point_index.push_back(static_cast<int>(i));
+    }
+  }
+  edges_.clear();
+  const PinholeCamera& camera = pyramid.level(0).camera;
+  const double edge_weight = options_.edge_weight / (options_.edge_sigma * options_.edge_sigma);
+  for (const MapPoint& point : keyframe_->points)
+    if (point.isEdge() && point.inverse_depth > 0.0)
+      edges_.push_back({camera.backProject(point.u, point.v, 1.0 / point.inverse_depth), point.normal.cast<double>(),
+                        point.class_mask, edge_weight});
+  edge_residuals_.clear();
+  for (int l = 0; l < levels; ++l) {
+    EdgeRegistrationOptions edge_options;
+    edge_options.level = l;
+    edge_options.huber_threshold = options_.edge_huber;
+    edge_residuals_.emplace_back(camera, edge_options);
+  }
+}
+
+double Tracker::evaluate(int level, const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame,
+                         const NearestNeighborFieldView* field, Normal* normal, TrackingResult* result) const {
+  const PyramidLevel& target = frame.level(level);
+  const LevelReference& reference = references_[static_cast<std::size_t>(level)];
+  const Eigen::Matrix3f R = T_cam_kf.linear().cast<float>();
+  const Eigen::Vector3f t = T_cam_kf.translation().cast<float>();
+  const float fx = static_cast<float>(target.camera.fx), fy = static_cast<float>(target.camera.fy);
+  const float cx = static_cast<float>(target.camera.cx), cy = static_cast<float>(target.camera.cy);
+  const float max_x = static_cast<float>(target.camera.width) - 2.0f, max_y = static_cast<float>(target.camera.height) - 2.0f;
+  const double k = options_.photometric_huber, inv_var = 1.0 / (options_.photometric_sigma * options_.photometric_sigma);
+  const double out_of_view_cost = kPattern * huberCost(2.0 * k, k) * inv_var;
+
+  double cost = 0.0, inlier_squares = 0.0;
+  int residuals = 0, inliers = 0, in_view = 0;
+  Eigen::Vector3f projected[kPattern];
+  Eigen::Vector2f pixel[kPattern];
+  for (std::size_t block = 0; block < reference.point_index.size(); ++block) {
+    bool visible = true;
+    for (int j = 0; j < kPattern && visible; ++j) {
+      projected[j] = R * reference.pattern_points[block * kPattern + j] + t;
+      const float z = projected[j].z();
+      pixel[j] = Eigen::Vector2f(fx * projected[j].x() / z + cx, fy * projected[j].y() / z + cy);
+      visible = z > 1e-3f && pixel[j].x() >= 1.0f && pixel[j].y() >= 1.0f && pixel[j].x() < max_x && pixel[j].y() < max_y;
+    }
+    if (!visible) {
+      cost += out_of_view_cost;
+      continue;
+    }
+    ++in_view;
+    for (int j = 0; j < kPattern; ++j) {
+      const float x = pixel[j].x(), y = pixel[j].y();
+      const double r = sampleBilinear(target.gradient, x, y) - reference.pattern_values[block * kPattern + j];
+      const double a = std::abs(r);
+      cost += huberCost(r, k) * inv_var;
+      ++residuals;
+      if (a <= k) {
+        ++inliers;
+        inlier_squares += r * r;
+      }
+      if (!normal) continue;
+      const double w = (a <= k ? 1.0 : k / a) * inv_var;
+      const Eigen::Vector3d P = projected[j].cast<double>();
+      const double gx = sampleBilinear(target.gradient_dx, x, y) * fx, gy = sampleBilinear(target.gradient_dy, x, y) * fy;
+      const Eigen::Vector3d d_point(gx / P.z(), gy / P.z(), -(gx * P.x() + gy * P.y()) / (P.z() * P.z()));
+      Vector6d J;
+      J << d_point, P.cross(d_point);  // left perturbation: d(exp(xi) P) = v + w x P
+      normal->H.noalias() += w * J * J.transpose();
+      normal->b.noalias() += w * r * J;
+    }
+  }
+  if (result) {
+    result->points_in_view = in_view;
+    result->photometric_residuals = residuals;
+    result->photometric_inliers = inliers;
+    result->photometric_rmse = inliers ? std::sqrt(inlier_squares / inliers) : 0.0;
+  }
+  if (field && !edges_.empty() && options_.edge_weight > 0.0) {
+    std::vector<EdgeResidual> edge_residuals;
+    cost += edge_residuals_[static_cast<std::size_t>(level)].evaluate(edges_, *field, T_cam_kf, &edge_residuals);
+    int edge_inliers = 0;
+    double edge_squares = 0.0;
+    for (const EdgeResidual& r : edge_residuals) {
+      if (normal) {
+        normal->H.noalias() += r.weight * r.jacobian.transpose() * r.jacobian;
+        normal->b.noalias() += r.weight * r.value * r.jacobian.transpose();
+      }
+      if (std::abs(r.value) <= options_.edge_huber) {
+        ++edge_inliers;
+        edge_squares += r.value * r.value;
+      }
+    }
+    if (result) {
+      result->edge_residuals = static_cast<int>(edge_residuals.size());
+      result->edge_inliers = edge_inliers;
+      result->edge_rmse = edge_inliers ? std::sqrt(edge_squares / edge_inliers) * std::ldexp(1.0, level) : 0.0;
+    }
+  }
+  return cost;
+}
+
+double Tracker::optimizeLevel(int level, const ImagePyramid& frame, const NearestNeighborFieldView* field,
+                              Eigen::Isometry3d* T, int* iterations) const {
+  Normal normal;
+  double cost = evaluate(level, *T, frame, field, &normal, nullptr);
+  double lambda = 1e-3;
+  for (int it = 0; it < options_.iterations_per_level; ++it) {
+    ++*iterations;
+    Eigen::Matrix<double, 6, 6> damped = normal.H;
+    damped.diagonal() += lambda * normal.H.diagonal() + Vector6d::Constant(1e-9);
+    const Vector6d step = -damped.ldlt().solve(normal.b);
+    const Eigen::Isometry3d candidate = se3Exp(step) * *T;
+    Normal candidate_normal;
+    const double candidate_cost = evaluate(level, candidate, frame, field, &candidate_normal, nullptr);
+    if (candidate_cost < cost) {
+      *T = candidate;
+      cost = candidate_cost;
+      normal = candidate_normal;
+      lambda = std::max(lambda * 0.5, 1e-6);
+      if (step.norm() < 1e-6) break;
+    } else {
+      lambda *= 4.0;
+      if (lambda > 1e4) break;
+    }
+  }
+  return cost;
+}
+
+TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFieldView* field,
+                              const std::vector<Eigen::Isometry3d>& guesses) const {
+  TrackingResult result;
+  if (!keyframe_ || references_.empty()) return result;
+  const int levels = std::min({static_cast<int>(references_.size()), frame.levels(),
+                               field ? static_cast<int>(field->levels.size()) : 99});
+  const int coarsest = levels - 1;
+  // The best guess after optimising the coarsest level wins (DSO tries several the same way).
+  double best_cost = std::numeric_limits<double>::max();
+  const std::vector<Eigen::Isometry3d> candidates = guesses.empty() ? std::vector<Eigen::Isometry3d>{Eigen::Isometry3d::Identity()} : guesses;
+  for (std::size_t g = 0; g < candidates.size(); ++g) {
+    Eigen::Isometry3d T = candidates[g];
+    int iterations = 0;
+    const double cost = optimizeLevel(coarsest, frame, field, &T, &iterations);
+    result.iterations += iterations;
+    if (cost < best_cost) {
+      best_cost = cost;
+      result.T_cam_kf = T;
+      result.guess = static_cast<int>(g);
+    }
+  }
+  for (int level = coarsest - 1; level >= 0; --level) optimizeLevel(level, frame, field, &result.T_cam_kf, &result.iterations);
+  evaluate(0, result.T_cam_kf, frame, field, nullptr, &result);
+
+  // Mean flow of the keyframe points: keyframe decisions.
+  const PinholeCamera& camera = frame.level(0).camera;
+  double flow = 0.0;
+  int counted = 0;
+  for (const MapPoint& point : keyframe_->points) {
+    if (!(point.inverse_depth > 0.0)) continue;
+    const Eigen::Vector3d p = result.T_cam_kf * camera.backProject(point.u, point.v, 1.0 / point.inverse_depth);
+    if (p.z() <= 1e-3) continue;
+    flow += (camera.project(p) - Eigen::Vector2d(point.u, point.v)).norm();
+    ++counted;
+  }
+  result.mean_flow = counted ? flow / counted : 0.0;
+  const double blocks = static_cast<double>(references_[0].point_index.size());
+  result.ok = blocks > 0 && result.points_in_view >= options_.min_points_in_view * blocks &&
+              result.photometric_inliers >= options_.min_inlier_ratio * std::max(1, result.photometric_residuals);
+  return result;
+}
+
+}  // namespace semantic_edge_vo
