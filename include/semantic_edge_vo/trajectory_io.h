@@ -26,6 +26,9 @@ const char* toString(TrajectoryFormat format);
 /// Parses "kitti" | "tum"; false on anything else.
 bool parseTrajectoryFormat(const std::string& text, TrajectoryFormat* format);
 
+/// Splits a line into whitespace-separated finite numbers; false with `error` naming the bad token.
+bool parseNumbers(const std::string& line, std::vector<double>* numbers, std::string* error);
+
 // Readers skip blank lines and lines starting with '#' (as evo does), accept any whitespace between
 // numbers and reject anything else. They return an empty string on success, otherwise
 // "<path>:<line>: what is wrong"; on failure the output is left unchanged.

@@ -21,24 +21,6 @@ std::string located(const std::string& path, int line_number, const std::string&
   return path + ":" + std::to_string(line_number) + ": " + message;
 }
 
-/// Splits a line into finite numbers; false with `error` set on a bad token.
-bool parseNumbers(const std::string& line, std::vector<double>* numbers, std::string* error) {
-  numbers->clear();
-  std::istringstream tokens(line);
-  std::string token;
-  while (tokens >> token) {
-    char* end = nullptr;
-    errno = 0;
-    const double value = std::strtod(token.c_str(), &end);
-    if (end == token.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
-      *error = "'" + token + "' is not a finite number";
-      return false;
-    }
-    numbers->push_back(value);
-  }
-  return true;
-}
-
 bool isDataLine(const std::string& line) {
   const auto first = line.find_first_not_of(" \t\r");
   return first != std::string::npos && line[first] != '#';
@@ -85,6 +67,23 @@ std::string writeLines(const std::string& path, std::size_t count, const std::fu
 }
 
 }  // namespace
+
+bool parseNumbers(const std::string& line, std::vector<double>* numbers, std::string* error) {
+  numbers->clear();
+  std::istringstream tokens(line);
+  std::string token;
+  while (tokens >> token) {
+    char* end = nullptr;
+    errno = 0;
+    const double value = std::strtod(token.c_str(), &end);
+    if (end == token.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
+      *error = "'" + token + "' is not a finite number";
+      return false;
+    }
+    numbers->push_back(value);
+  }
+  return true;
+}
 
 const char* toString(TrajectoryFormat format) { return format == TrajectoryFormat::kKitti ? "kitti" : "tum"; }
 

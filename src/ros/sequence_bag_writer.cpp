@@ -1,5 +1,6 @@
 #include "semantic_edge_vo/ros/sequence_bag_writer.h"
 
+#include <functional>
 #include <stdexcept>
 
 #include <cv_bridge/cv_bridge.h>
@@ -10,6 +11,15 @@
 #include "semantic_edge_vo/synthetic/sequence_formats.h"
 
 namespace semantic_edge_vo {
+namespace {
+
+const char* imageEncoding(const cv::Mat& image) {
+  if (image.type() == CV_8UC1) return "mono8";
+  if (image.type() == CV_8UC3) return "bgr8";
+  throw std::runtime_error("the camera image must be CV_8UC1 or CV_8UC3");
+}
+
+}  // namespace
 
 sensor_msgs::CameraInfo cameraInfoOf(const PinholeCamera& camera, const std::string& frame_id) {
   sensor_msgs::CameraInfo info;
@@ -24,8 +34,8 @@ sensor_msgs::CameraInfo cameraInfoOf(const PinholeCamera& camera, const std::str
   return info;
 }
 
-SequenceBagWriter::SequenceBagWriter(const std::string& path, const PinholeCamera& camera, bool semantics)
-    : info_(cameraInfoOf(camera, kCameraFrame)), semantics_(semantics) {
+SequenceBagWriter::SequenceBagWriter(const std::string& path, const sensor_msgs::CameraInfo& info, double base_time)
+    : info_(info), base_time_(base_time) {
   try {
     bag_.open(path, rosbag::bagmode::Write);
     bag_.setCompression(rosbag::compression::LZ4);
@@ -35,6 +45,11 @@ SequenceBagWriter::SequenceBagWriter(const std::string& path, const PinholeCamer
   }
 }
 
+SequenceBagWriter::SequenceBagWriter(const std::string& path, const PinholeCamera& camera, bool semantics)
+    : SequenceBagWriter(path, cameraInfoOf(camera, kCameraFrame)) {
+  semantics_ = semantics;
+}
+
 SequenceBagWriter::~SequenceBagWriter() { close(); }
 
 void SequenceBagWriter::close() {
@@ -42,52 +57,76 @@ void SequenceBagWriter::close() {
   open_ = false;
 }
 
-void SequenceBagWriter::writePng(const std::string& topic, const ros::Time& stamp, std::vector<std::uint8_t> png,
-                                 const std::string& encoding) {
+void SequenceBagWriter::writePng(const std::string& topic, const std_msgs::Header& header,
+                                 std::vector<std::uint8_t> png, const std::string& encoding) {
   sensor_msgs::CompressedImage message;
-  message.header.stamp = stamp;
-  message.header.frame_id = kCameraFrame;
+  message.header = header;
   message.format = encoding + "; png compressed ";
   message.data = std::move(png);
-  bag_.write(topic, stamp, message);
+  bag_.write(topic, header.stamp, message);
 }
 
-bool SequenceBagWriter::write(const synthetic::SyntheticFrame& frame, const synthetic::EncodedFrame& files) {
-  if (!open_ || !error_.empty()) return false;
-  auto encoded = [&](const char* folder) {
-    const std::vector<std::uint8_t>* bytes = files.find(folder);
-    if (!bytes) throw std::runtime_error(std::string("no encoded ") + folder + " image");
-    return *bytes;
-  };
-  try {
-    const ros::Time stamp(kBaseTime + frame.time);
-    std_msgs::Header header;
-    header.stamp = stamp;
-    header.frame_id = kCameraFrame;
-    header.seq = static_cast<std::uint32_t>(frame.index);
-    info_.header = header;
-    bag_.write("/camera/image_rect", stamp, cv_bridge::CvImage(header, "mono8", frame.gray).toImageMsg());
-    bag_.write("/camera/camera_info", stamp, info_);
-    writePng("/camera/color/image_rect/compressed", stamp, encoded("image_2"), "bgr8");
-    bag_.write("/camera/color/camera_info", stamp, info_);
-    // Raw images in the forms EdgeIntake reads (the bag's LZ4 chunks keep them small on disk).
-    if (semantics_) {
-      bag_.write("/camera/semantics/class_labels", stamp,
-                 cv_bridge::CvImage(header, "8UC2", synthetic::classLabels(frame.semantics)).toImageMsg());
-      bag_.write("/camera/semantics/edge_bitmask", stamp,
-                 cv_bridge::CvImage(header, "8UC4", synthetic::packEdgeBitmask(frame.semantics)).toImageMsg());
-    }
-    bag_.write("/camera/semantics/ground_truth_class", stamp, cv_bridge::CvImage(header, "mono8", frame.class_id).toImageMsg());
+std_msgs::Header SequenceBagWriter::writeCommon(const BagFrame& frame) {
+  std_msgs::Header header;
+  header.stamp = ros::Time(base_time_ + frame.time);
+  header.frame_id = info_.header.frame_id;
+  header.seq = frame.index;
+  info_.header = header;
+  bag_.write("/camera/image_rect", header.stamp,
+             cv_bridge::CvImage(header, imageEncoding(frame.image), frame.image).toImageMsg());
+  bag_.write("/camera/camera_info", header.stamp, info_);
+  // Raw images in the forms EdgeIntake reads (the bag's LZ4 chunks keep them small on disk).
+  if (!frame.class_labels.empty())
+    bag_.write("/camera/semantics/class_labels", header.stamp,
+               cv_bridge::CvImage(header, frame.class_labels.channels() == 1 ? "8UC1" : "8UC2", frame.class_labels)
+                   .toImageMsg());
+  if (!frame.edge_bitmask.empty())
+    bag_.write("/camera/semantics/edge_bitmask", header.stamp,
+               cv_bridge::CvImage(header, "8UC4", frame.edge_bitmask).toImageMsg());
+  if (frame.T_world_cam) {
     geometry_msgs::PoseStamped pose;
-    pose.header.stamp = stamp;
+    pose.header.stamp = header.stamp;
     pose.header.frame_id = kWorldFrame;
-    pose.pose = toPoseMsg(frame.T_world_cam);
-    bag_.write("/ground_truth/pose", stamp, pose);
+    pose.pose = toPoseMsg(*frame.T_world_cam);
+    bag_.write("/ground_truth/pose", header.stamp, pose);
+  }
+  return header;
+}
+
+bool SequenceBagWriter::guarded(const std::function<void()>& write) {
+  if (!open_ || !error_.empty()) return false;
+  try {
+    write();
   } catch (const std::exception& e) {
     error_ = std::string("cannot write to the bag: ") + e.what();
     return false;
   }
   return true;
+}
+
+bool SequenceBagWriter::write(const BagFrame& frame) {
+  return guarded([&] { writeCommon(frame); });
+}
+
+bool SequenceBagWriter::write(const synthetic::SyntheticFrame& frame, const synthetic::EncodedFrame& files) {
+  return guarded([&] {
+    const std::vector<std::uint8_t>* color = files.find("image_2");
+    if (!color) throw std::runtime_error("no encoded image_2 image");
+    BagFrame common;
+    common.index = static_cast<std::uint32_t>(frame.index);
+    common.time = frame.time;
+    common.image = frame.gray;
+    if (semantics_) {
+      common.class_labels = synthetic::classLabels(frame.semantics);
+      common.edge_bitmask = synthetic::packEdgeBitmask(frame.semantics);
+    }
+    common.T_world_cam = frame.T_world_cam;
+    const std_msgs::Header header = writeCommon(common);
+    writePng("/camera/color/image_rect/compressed", header, *color, "bgr8");
+    bag_.write("/camera/color/camera_info", header.stamp, info_);
+    bag_.write("/camera/semantics/ground_truth_class", header.stamp,
+               cv_bridge::CvImage(header, "mono8", frame.class_id).toImageMsg());
+  });
 }
 
 }  // namespace semantic_edge_vo

@@ -6,7 +6,6 @@
 // Rendering and file writing run on two threads; a progress bar goes to stderr.
 #include <chrono>
 #include <condition_variable>
-#include <cstdio>
 #include <deque>
 #include <iostream>
 #include <memory>
@@ -14,12 +13,14 @@
 #include <string>
 #include <thread>
 
+#include "semantic_edge_vo/progress_bar.h"
 #include "semantic_edge_vo/ros/sequence_bag_writer.h"
 #include "semantic_edge_vo/synthetic/sequence_directory_writer.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
 
 namespace {
 
+using semantic_edge_vo::ProgressBar;
 using semantic_edge_vo::SequenceBagWriter;
 using namespace semantic_edge_vo::synthetic;
 
@@ -91,33 +92,6 @@ bool parse(int argc, char** argv, Arguments* args, std::string* error) {
   if (args->output.empty()) return *error = "--output is required", false;
   return true;
 }
-
-/// A one-line progress bar on stderr, redrawn at most 10 times a second.
-class ProgressBar {
- public:
-  ProgressBar(int total, bool enabled) : total_(total), enabled_(enabled), start_(Clock::now()) {}
-  void update(int done) {
-    if (!enabled_) return;
-    const auto now = Clock::now();
-    if (done < total_ && now - last_ < std::chrono::milliseconds(100)) return;
-    last_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double rate = elapsed > 0.0 ? done / elapsed : 0.0;
-    const int eta = rate > 0.0 ? static_cast<int>((total_ - done) / rate) : 0;
-    constexpr int kWidth = 40;
-    const int filled = static_cast<int>(static_cast<long long>(kWidth) * done / total_);
-    std::fprintf(stderr, "\r[%.*s%*s] %d/%d  %.1f frames/s  ETA %02d:%02d ", filled,
-                 "########################################", kWidth - filled, "", done, total_, rate, eta / 60, eta % 60);
-    if (done == total_) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
-  }
-
- private:
-  using Clock = std::chrono::steady_clock;
-  int total_;
-  bool enabled_;
-  Clock::time_point start_, last_;
-};
 
 /// Frames rendered but not yet written, bounded so memory stays small.
 class FrameQueue {

@@ -1,0 +1,95 @@
+// Converts a KITTI odometry sequence folder into a rosbag that plays into launch/semantic_edge_vo.launch:
+// /camera/image_rect (+ complete /camera/camera_info), the semantic topics, /ground_truth/pose.
+//   kitti_to_bag --sequence DIR --output BAG [--camera 0|2] [--poses FILE] [--semantics-labels DIR]
+//                [--semantics-bitmask DIR] [--start-time T] [--quiet]
+// Topics and formats: README (Running on a bag) and docs/synthetic_sequences.md.
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "semantic_edge_vo/progress_bar.h"
+#include "semantic_edge_vo/ros/kitti_bag_conversion.h"
+
+namespace sevo = semantic_edge_vo;
+
+namespace {
+
+const char* const kUsage = R"(usage: kitti_to_bag --sequence DIR --output BAG [options]
+  --sequence DIR           KITTI odometry folder: calib.txt, times.txt, image_0/ or image_2/ (%06d.png)
+  --output BAG             bag to write (replaced)
+  --camera 0|2             0: image_0, grayscale (mono8, P0); 2: image_2, colour (bgr8, P2). Default 0
+  --poses FILE             ground truth of camera 0, KITTI poses (12 numbers a line, one line per frame),
+                           written on /ground_truth/pose (moved to camera 2 with --camera 2)
+  --semantics-labels DIR   %06d.png class labels: 8-bit, 1 channel (class index) or 4 channels
+                           (class index, confidence x 255, ...) -> /camera/semantics/class_labels
+  --semantics-bitmask DIR  %06d.png edge bitmasks: 8-bit, 4 channels (class bits 0-7, 8-15, 16-23,
+                           edge strength x 255) -> /camera/semantics/edge_bitmask
+  --start-time T           stamp of time 0 of times.txt, s (default 1600000000)
+  --quiet                  no progress bar
+)";
+
+/// Empty on success, otherwise what is wrong with the command line.
+std::string parseArguments(int argc, char** argv, sevo::KittiBagOptions* options, bool* quiet) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "--quiet") {
+      *quiet = true;
+      continue;
+    }
+    if (i + 1 >= argc) return flag + " needs a value";
+    const std::string value = argv[++i];
+    if (flag == "--sequence") options->sequence = value;
+    else if (flag == "--output") options->output = value;
+    else if (flag == "--poses") options->poses = value;
+    else if (flag == "--semantics-labels") options->class_labels = value;
+    else if (flag == "--semantics-bitmask") options->edge_bitmask = value;
+    else if (flag == "--camera") {
+      if (value != "0" && value != "2") return "--camera takes 0 or 2";
+      options->camera = std::stoi(value);
+    } else if (flag == "--start-time") {
+      char* end = nullptr;
+      options->start_time = std::strtod(value.c_str(), &end);
+      if (value.empty() || *end != '\0' || options->start_time <= 0.0) return "--start-time takes a positive time, s";
+    } else {
+      return "unknown argument '" + flag + "'";
+    }
+  }
+  if (options->sequence.empty()) return "--sequence is required";
+  if (options->output.empty()) return "--output is required";
+  return "";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  sevo::KittiBagOptions options;
+  bool quiet = false;
+  if (argc > 1 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+    std::cout << kUsage;
+    return 0;
+  }
+  if (const std::string error = parseArguments(argc, argv, &options, &quiet); !error.empty()) {
+    std::cerr << "kitti_to_bag: " << error << "\n" << kUsage;
+    return 2;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<sevo::ProgressBar> progress;
+  std::size_t frames = 0;
+  const std::string error = sevo::writeKittiBag(options, [&](std::size_t done, std::size_t total) {
+    if (!progress) progress = std::make_unique<sevo::ProgressBar>(static_cast<int>(total), !quiet);
+    progress->update(static_cast<int>(done));
+    frames = done;
+  });
+  if (!error.empty()) {
+    std::cerr << (frames > 0 ? "\n" : "") << "kitti_to_bag: " << error << "\n";
+    return 1;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cerr << "kitti_to_bag: wrote " << frames << " frames of " << options.sequence << " (camera " << options.camera
+            << ") to " << options.output << ", " << std::filesystem::file_size(options.output) / 1e6 << " MB, in "
+            << seconds << " s\n";
+  return 0;
+}
