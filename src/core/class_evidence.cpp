@@ -5,20 +5,95 @@
 #include <sstream>
 
 #include <opencv2/core.hpp>
+#include <opencv2/core/hal/intrin.hpp>
 
 namespace semantic_edge_vo {
 namespace {
 
 constexpr int kBitmaskClasses = 24;
 
-/// Per-pixel maximum over the channels of an interleaved C-channel image, as float (scale applied).
-template <typename T>
-void channelMaximum(const cv::Mat& values, float scale, cv::Mat* maximum) {
+/// Bits of a float outside [0, 1] or NaN: positive floats order like their bit patterns, so anything
+/// above the bits of 1.0f is too large or NaN, and every negative pattern but -0 is below zero.
+constexpr std::uint32_t kOneBits = 0x3f800000u, kNegativeZeroBits = 0x80000000u;
+
+inline bool invalidBits(std::uint32_t bits) { return bits > kOneBits && bits != kNegativeZeroBits; }
+
+std::size_t countInvalid(const cv::Mat& values) {
+  std::size_t invalid = 0;
+  const int n = values.cols * values.channels();
+  for (int y = 0; y < values.rows; ++y) {
+    const float* row = values.ptr<float>(y);
+    for (int i = 0; i < n; ++i) invalid += !(row[i] >= 0.0f && row[i] <= 1.0f);  // NaN fails both
+  }
+  return invalid;
+}
+
+/// Whether any float is NaN or outside [0, 1], four at a time.
+bool anyInvalid(const cv::Mat& values) {
+  const cv::v_uint32x4 one = cv::v_setall_u32(kOneBits), negative_zero = cv::v_setall_u32(kNegativeZeroBits);
+  cv::v_uint32x4 bad = cv::v_setzero_u32();
+  std::uint32_t bad_tail = 0;
+  const int n = values.cols * values.channels();
+  for (int y = 0; y < values.rows; ++y) {
+    const std::uint32_t* row = values.ptr<std::uint32_t>(y);
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+      const cv::v_uint32x4 bits = cv::v_load(row + i);
+      bad = bad | ((bits > one) & (bits != negative_zero));
+    }
+    for (; i < n; ++i) bad_tail |= invalidBits(row[i]);
+  }
+  return cv::v_check_any(bad) || bad_tail;
+}
+
+/// Per-pixel maximum over the 32-bit float channels, four channels at a time; true when a value is
+/// NaN or outside [0, 1] (checked in the same pass).
+bool channelMaximumFloat(const cv::Mat& values, cv::Mat* maximum) {
+  const int c = values.channels();
+  const cv::v_uint32x4 one = cv::v_setall_u32(kOneBits), negative_zero = cv::v_setall_u32(kNegativeZeroBits);
+  cv::v_uint32x4 bad = cv::v_setzero_u32();
+  std::uint32_t bad_tail = 0;
+  for (int y = 0; y < values.rows; ++y) {
+    const float* in = values.ptr<float>(y);
+    float* out = maximum->ptr<float>(y);
+    for (int x = 0; x < values.cols; ++x, in += c) {
+      cv::v_float32x4 top = cv::v_setall_f32(0.0f);
+      int k = 0;
+      for (; k + 4 <= c; k += 4) {
+        const cv::v_float32x4 v = cv::v_load(in + k);
+        top = cv::v_max(top, v);
+        const cv::v_uint32x4 bits = cv::v_reinterpret_as_u32(v);
+        bad = bad | ((bits > one) & (bits != negative_zero));
+      }
+      float m = cv::v_reduce_max(top);
+      for (; k < c; ++k) {
+        m = std::max(m, in[k]);
+        std::uint32_t bits;
+        std::memcpy(&bits, in + k, sizeof(bits));
+        bad_tail |= invalidBits(bits);
+      }
+      out[x] = m;
+    }
+  }
+  return cv::v_check_any(bad) || bad_tail;
+}
+
+/// Per-pixel maximum over the 8-bit channels (16 at a time), / 255.
+void channelMaximumByte(const cv::Mat& values, cv::Mat* maximum) {
   const int c = values.channels();
   for (int y = 0; y < values.rows; ++y) {
-    const T* in = values.ptr<T>(y);
+    const std::uint8_t* in = values.ptr<std::uint8_t>(y);
     float* out = maximum->ptr<float>(y);
-    for (int x = 0; x < values.cols; ++x, in += c) out[x] = static_cast<float>(*std::max_element(in, in + c)) * scale;
+    for (int x = 0; x < values.cols; ++x, in += c) {
+      int k = 0;
+      std::uint8_t m = 0;
+      if (c >= 16) {
+        m = cv::v_reduce_max(cv::v_load(in));
+        k = 16;
+      }
+      for (; k < c; ++k) m = std::max(m, in[k]);
+      out[x] = m * (1.0f / 255.0f);
+    }
   }
 }
 
@@ -84,14 +159,8 @@ std::string ClassEvidence::checkLayout(cv::Size image_size, std::string* detail)
 }
 
 std::size_t ClassEvidence::invalidValueCount() const {
-  if (values.depth() != CV_32F) return 0;
-  std::size_t invalid = 0;
-  const int n = values.cols * values.channels();
-  for (int y = 0; y < values.rows; ++y) {
-    const float* row = values.ptr<float>(y);
-    for (int i = 0; i < n; ++i) invalid += !(row[i] >= 0.0f && row[i] <= 1.0f);  // NaN fails both
-  }
-  return invalid;
+  if (values.depth() != CV_32F || !anyInvalid(values)) return 0;
+  return countInvalid(values);
 }
 
 void ClassEvidence::probabilitiesAt(int x, int y, float* out) const {
@@ -119,16 +188,17 @@ void ClassEvidence::probabilitiesAt(int x, int y, float* out) const {
   }
 }
 
-cv::Mat ClassEvidence::edgeProbability() const {
+cv::Mat ClassEvidence::edgeProbability(std::size_t* invalid) const {
   cv::Mat maximum(values.size(), CV_32FC1);
+  if (invalid) *invalid = 0;
   if (form == ClassEvidenceForm::kBitmask) {
     cv::Mat strength;
     cv::extractChannel(values, strength, 3);
     strength.convertTo(maximum, CV_32F, 1.0 / 255.0);
   } else if (values.depth() == CV_32F) {
-    channelMaximum<float>(values, 1.0f, &maximum);
+    if (channelMaximumFloat(values, &maximum) && invalid) *invalid = countInvalid(values);
   } else {
-    channelMaximum<std::uint8_t>(values, 1.0f / 255.0f, &maximum);
+    channelMaximumByte(values, &maximum);
   }
   return maximum;
 }

@@ -39,6 +39,10 @@ std::uint32_t classMask(const ClassValues& values, int classes, float threshold,
   return mask;
 }
 
+ExtractionError invalidProbabilities(std::size_t count, const char* what) {
+  return {"invalid_probability", std::to_string(count) + " " + what + " probabilities are NaN or outside [0, 1]"};
+}
+
 }  // namespace
 
 bool parseIntakeMode(const std::string& text, IntakeMode* mode) {
@@ -84,9 +88,9 @@ ExtractionError SemanticEdgeExtractor::checkInputs(const cv::Mat& gray, const Cl
   ExtractionError error;
   error.reason = classes.checkLayout(gray.size(), &error.detail);
   if (error) return error;
-  if (const std::size_t invalid = classes.invalidValueCount())
-    return {"invalid_probability", std::to_string(invalid) + " class probabilities are NaN or outside [0, 1]"};
-  if (!fused || edge_probability.empty()) return {};
+  if (!fused) return {};  // semantic_edges checks the values in its pass over them (extract)
+  if (const std::size_t invalid = classes.invalidValueCount()) return invalidProbabilities(invalid, "class");
+  if (edge_probability.empty()) return {};
   if (edge_probability.type() != CV_32FC1 && edge_probability.type() != CV_8UC1)
     return {"unsupported_layout", "edge probability must be one channel, 32-bit float or 8-bit"};
   if (edge_probability.size() != gray.size())
@@ -94,7 +98,7 @@ ExtractionError SemanticEdgeExtractor::checkInputs(const cv::Mat& gray, const Cl
                                  std::to_string(edge_probability.rows) + ", image is " + std::to_string(gray.cols) +
                                  "x" + std::to_string(gray.rows)};
   if (const std::size_t invalid = ClassEvidence{ClassEvidenceForm::kProbabilities, edge_probability, 1}.invalidValueCount())
-    return {"invalid_probability", std::to_string(invalid) + " edge probabilities are NaN or outside [0, 1]"};
+    return invalidProbabilities(invalid, "edge");
   return {};
 }
 
@@ -116,7 +120,10 @@ ExtractionError SemanticEdgeExtractor::extract(const cv::Mat& gray, const ClassE
     }
     assignFusedClasses(classes, edges);
   } else {
-    *edges = thinEdgeProbability(classes.edgeProbability(), gray, options_.thinning);
+    std::size_t invalid = 0;
+    const cv::Mat probability = classes.edgeProbability(&invalid);
+    if (invalid) return invalidProbabilities(invalid, "class");
+    *edges = thinEdgeProbability(probability, gray, options_.thinning);
     assignEdgeClasses(classes, edges);
   }
   return {};
@@ -126,12 +133,24 @@ void SemanticEdgeExtractor::assignFusedClasses(const ClassEvidence& classes, Edg
   ClassValues maximum;
   const auto distance = static_cast<float>(options_.side_distance);
   const auto threshold = static_cast<float>(options_.class_threshold);
+  // Edges without any class evidence (unlabeled pixels, all probabilities 0) would get strength 0
+  // and no class: they are dropped, keeping the order of the others.
+  std::size_t kept = 0;
   for (std::size_t i = 0; i < edges->size(); ++i) {
     maximumAcross(classes, edges->u[i], edges->v[i], edges->normal_x[i], edges->normal_y[i], distance, &maximum);
     float best = 0.0f;
-    edges->class_mask[i] = classMask(maximum, classes.classes, threshold, &best);
-    edges->strength[i] *= best;
+    const std::uint32_t mask = classMask(maximum, classes.classes, threshold, &best);
+    if (!mask) continue;
+    edges->u[kept] = edges->u[i];
+    edges->v[kept] = edges->v[i];
+    edges->normal_x[kept] = edges->normal_x[i];
+    edges->normal_y[kept] = edges->normal_y[i];
+    edges->strength[kept] = edges->strength[i] * best;
+    edges->class_mask[kept] = mask;
+    ++kept;
   }
+  for (auto* values : {&edges->u, &edges->v, &edges->normal_x, &edges->normal_y, &edges->strength}) values->resize(kept);
+  edges->class_mask.resize(kept);
 }
 
 void SemanticEdgeExtractor::assignEdgeClasses(const ClassEvidence& classes, EdgeSet* edges) const {

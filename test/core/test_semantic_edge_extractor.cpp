@@ -98,6 +98,23 @@ TEST(SemanticEdgeExtractor, FusedBoundaryPixelBelongsToBothSides) {
   expectBoundaryEdges(edges, (1u << kRoad) | (1u << kCar), 0.05);
 }
 
+TEST(SemanticEdgeExtractor, FusedEdgesWithoutClassEvidenceAreDropped) {
+  // Labels: road left of the boundary, unlabeled (index >= C) right of it up to the image's end,
+  // in the upper half; road everywhere in the lower half.
+  cv::Mat labels(kHeight, kWidth, CV_8UC2, cv::Scalar(kRoad, 255));
+  labels(cv::Rect(kColumn - 6, 0, kWidth - kColumn + 6, kHeight / 2)).setTo(cv::Scalar(255, 255));
+  EdgeSet edges;
+  ASSERT_FALSE(SemanticEdgeExtractor(optionsFor(IntakeMode::kFused))
+                   .extract(boundaryImage(), {ClassEvidenceForm::kLabels, labels, kClasses}, {}, &edges));
+  ASSERT_FALSE(edges.u.empty());
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    EXPECT_EQ(edges.class_mask[i], 1u << kRoad);
+    EXPECT_GT(edges.v[i], kHeight / 2 - 3.0f) << "an edge among unlabeled pixels was kept";
+    EXPECT_GT(edges.strength[i], 0.0f);
+  }
+  EXPECT_EQ(edges.strength.size(), edges.size());
+}
+
 TEST(SemanticEdgeExtractor, FusedWithALearnedEdgeMap) {
   cv::Mat edge_probability(kHeight, kWidth, CV_32F);
   for (int y = 0; y < kHeight; ++y)
@@ -146,6 +163,21 @@ TEST(SemanticEdgeExtractor, BadClassInputIsNamed) {
   spoiled = good.clone();
   spoiled.ptr<float>(50)[100] = -0.2f;
   EXPECT_EQ(reason({ClassEvidenceForm::kProbabilities, spoiled, kClasses}), "invalid_probability");
+  const SemanticEdgeExtractor per_class(optionsFor(IntakeMode::kSemanticEdges));
+  for (const float bad : {std::nanf(""), -0.2f, 1.5f}) {
+    spoiled = good.clone();
+    spoiled.ptr<float>(kHeight - 1)[kWidth * kClasses - 1] = bad;  // the last value (tail of the SIMD scan)
+    EXPECT_EQ(per_class.extract(gray, {ClassEvidenceForm::kProbabilities, spoiled, kClasses}, {}, &edges).reason,
+              "invalid_probability") << bad;
+    spoiled = good.clone();
+    spoiled.ptr<float>(3)[2 * kClasses + 1] = bad;
+    EXPECT_EQ(per_class.extract(gray, {ClassEvidenceForm::kProbabilities, spoiled, kClasses}, {}, &edges).reason,
+              "invalid_probability") << bad;
+  }
+  spoiled = good.clone();
+  spoiled.ptr<float>(3)[4] = -0.0f;
+  EXPECT_EQ(per_class.extract(gray, {ClassEvidenceForm::kProbabilities, spoiled, kClasses}, {}, &edges).reason, "")
+      << "-0 is a valid probability";
   cv::Mat doubles;
   good.convertTo(doubles, CV_64F);
   EXPECT_EQ(reason({ClassEvidenceForm::kProbabilities, doubles, kClasses}), "unsupported_layout");
