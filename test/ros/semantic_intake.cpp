@@ -1,6 +1,6 @@
 // rostest: the fused intake pairs class maps by stamp, waits for late ones, falls back to Canny on
 // missing ones, refuses bad class maps by name and keeps running; compressed images are taken; the
-// Segmenter publishes ENet class probabilities (skipped without the model).
+// semantic_edges intake reads the bitmask form; the Segmenter publishes ENet class probabilities (skipped without the model).
 #include <filesystem>
 #include <functional>
 #include <mutex>
@@ -200,6 +200,36 @@ TEST_F(SemanticIntake, CompressedImagesAreDecoded) {
   ASSERT_TRUE(waitFor([&] { return frame != nullptr; })) << "no frame from the compressed intake";
   EXPECT_EQ(frame->image.width, static_cast<std::uint32_t>(kWidth));
   EXPECT_GT(frame->edge_u.size(), static_cast<std::size_t>(kHeight / 2));
+}
+
+TEST_F(SemanticIntake, SemanticEdgesFromTheBitmaskForm) {
+  ros::Publisher images = node_.advertise<sensor_msgs::Image>("/cam3/image", 5);
+  ros::Publisher info = node_.advertise<sensor_msgs::CameraInfo>("/cam3/camera_info", 5);
+  ros::Publisher bitmasks = node_.advertise<sensor_msgs::Image>("/cam3/class_edge_probabilities", 5);
+  SemanticEdgeFrameConstPtr frame;
+  ros::Subscriber frames = node_.subscribe<SemanticEdgeFrame>("/cam3/edge_frame", 5, [&](const SemanticEdgeFrameConstPtr& f) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    frame = f;
+  });
+  ASSERT_TRUE(waitFor([&] { return images.getNumSubscribers() > 0 && bitmasks.getNumSubscribers() > 0; }, 10.0));
+  ros::WallDuration(0.5).sleep();
+  // Road and car bits on a 3-pixel band at the boundary, edge strength peaking on it.
+  const std::uint32_t bits = (1u << kRoad) | (1u << kCar);
+  cv::Mat bitmask(kHeight, kWidth, CV_8UC4, cv::Scalar::all(0));
+  for (int x = kBoundary - 1; x <= kBoundary + 1; ++x)
+    bitmask.colRange(x, x + 1).setTo(cv::Scalar(bits & 0xff, (bits >> 8) & 0xff, (bits >> 16) & 0xff, x == kBoundary ? 230 : 120));
+  const ros::Time stamp = ros::Time::now();
+  images.publish(imageMsg(boundaryImage(), "mono8", stamp));
+  info.publish(infoMsg(stamp));
+  bitmasks.publish(imageMsg(bitmask, "8UC4", stamp));
+  ASSERT_TRUE(waitFor([&] { return frame != nullptr; })) << "no frame from the bitmask intake";
+  EXPECT_EQ(frame->intake_mode, "semantic_edges");
+  std::size_t both = 0;
+  for (std::size_t i = 0; i < frame->edge_u.size(); ++i) {
+    EXPECT_NEAR(frame->edge_u[i], kBoundary, 1.0);
+    both += frame->edge_class_mask[i] == bits;
+  }
+  EXPECT_GT(both, static_cast<std::size_t>(kHeight / 2)) << "boundary edges must carry road and car";
 }
 
 TEST_F(SemanticIntake, SegmenterPublishesEnetProbabilities) {
