@@ -1,33 +1,19 @@
 #pragma once
-#include <cstdint>
 #include <memory>
 #include <vector>
 
 #include <Eigen/Geometry>
 
-#include "semantic_edge_vo/image_pyramid.h"
+#include "semantic_edge_vo/map_point.h"
+#include "semantic_edge_vo/odometry_frame.h"
 
 namespace semantic_edge_vo {
 
-/// A point hosted by a keyframe, parameterised by its inverse depth there (paper III-A).
-struct MapPoint {
-  float u = 0, v = 0;                   ///< full-resolution pixel in the host keyframe
-  double inverse_depth = 0.0;           ///< 1 / z in the host's optical frame, 1/m (arbitrary monocular scale)
-  double inverse_depth_variance = 1.0;  ///< 1/m^2
-  std::uint32_t class_mask = 0;         ///< class bits; 0: supportive point (photometric residual only)
-  Eigen::Vector2f normal = Eigen::Vector2f::Zero();  ///< unit image-gradient direction (edge points)
-  int observations = 0;                 ///< depth measurements fused so far
-
-  bool isEdge() const { return class_mask != 0; }
-};
-
 struct Keyframe {
   int id = 0;
-  int frame_index = 0;   ///< index of the frame it was made from
-  double time = 0.0;     ///< s
   Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();  ///< camera-to-world
-  std::shared_ptr<const ImagePyramid> pyramid;
-  std::vector<MapPoint> points;
+  std::shared_ptr<const OdometryFrame> frame;  ///< the frame it was made from (pyramid, field, index, time)
+  std::vector<MapPoint> points;                ///< hosted points; those with observations > 0 have a measured depth
 };
 
 }  // namespace semantic_edge_vo

@@ -5,7 +5,7 @@
 
 #include "semantic_edge_vo/class_evidence.h"
 #include "semantic_edge_vo/image_pyramid.h"
-#include "semantic_edge_vo/keyframe.h"
+#include "semantic_edge_vo/map_point.h"
 #include "semantic_edge_vo/nearest_neighbor_field.h"
 #include "semantic_edge_vo/point_sampler.h"
 #include "semantic_edge_vo/semantic_edge_extractor.h"

@@ -27,6 +27,7 @@ struct TrackingResult {
   bool ok = false;                   ///< the pose can be trusted
   int guess = 0;                     ///< index of the initial guess that won
   int iterations = 0;
+  int points = 0;                    ///< keyframe points with depth (level 0)
   int points_in_view = 0;
   int photometric_residuals = 0, photometric_inliers = 0;
   int edge_residuals = 0, edge_inliers = 0;

@@ -16,6 +16,12 @@ Eigen::Matrix3d leftJacobian(const Eigen::Vector3d& w) {
 
 }  // namespace
 
+Eigen::Isometry3d orthonormalized(const Eigen::Isometry3d& pose) {
+  Eigen::Isometry3d result = pose;
+  result.linear() = Eigen::Quaterniond(pose.linear()).normalized().toRotationMatrix();
+  return result;
+}
+
 Eigen::Isometry3d se3Exp(const Vector6d& twist) {
   const Eigen::Vector3d v = twist.head<3>(), w = twist.tail<3>();
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();

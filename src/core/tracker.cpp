@@ -37,7 +37,7 @@ std::string TrackerOptions::validate() const {
 
 void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
   keyframe_ = std::move(keyframe);
-  const ImagePyramid& pyramid = *keyframe_->pyramid;
+  const ImagePyramid& pyramid = *keyframe_->frame->pyramid;
   const int levels = std::min(options_.levels, pyramid.levels());
   references_.assign(static_cast<std::size_t>(levels), LevelReference());
   for (int l = 0; l < levels; ++l) {
@@ -46,7 +46,7 @@ void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
     LevelReference& reference = references_[static_cast<std::size_t>(l)];
     for (std::size_t i = 0; i < keyframe_->points.size(); i += static_cast<std::size_t>(pointStride(l))) {
       const MapPoint& point = keyframe_->points[i];
-      if (!(point.inverse_depth > 0.0)) continue;
+      if (!point.hasDepth()) continue;
       const float u = toLevel(point.u, scale), v = toLevel(point.v, scale);
       if (!level.camera.contains(u, v, 3.0)) continue;
       const double z = 1.0 / point.inverse_depth;
@@ -62,7 +62,7 @@ void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
   const PinholeCamera& camera = pyramid.level(0).camera;
   const double edge_weight = options_.edge_weight / (options_.edge_sigma * options_.edge_sigma);
   for (const MapPoint& point : keyframe_->points)
-    if (point.isEdge() && point.inverse_depth > 0.0)
+    if (point.isEdge() && point.hasDepth())
       edges_.push_back({camera.backProject(point.u, point.v, 1.0 / point.inverse_depth), point.normal.cast<double>(),
                         point.class_mask, edge_weight});
   edge_residuals_.clear();
@@ -164,7 +164,7 @@ double Tracker::optimizeLevel(int level, const ImagePyramid& frame, const Neares
     Eigen::Matrix<double, 6, 6> damped = normal.H;
     damped.diagonal() += lambda * normal.H.diagonal() + Vector6d::Constant(1e-9);
     const Vector6d step = -damped.ldlt().solve(normal.b);
-    const Eigen::Isometry3d candidate = se3Exp(step) * *T;
+    const Eigen::Isometry3d candidate = orthonormalized(se3Exp(step) * *T);
     Normal candidate_normal;
     const double candidate_cost = evaluate(level, candidate, frame, field, &candidate_normal, nullptr);
     if (candidate_cost < cost) {
@@ -210,14 +210,15 @@ TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFi
   double flow = 0.0;
   int counted = 0;
   for (const MapPoint& point : keyframe_->points) {
-    if (!(point.inverse_depth > 0.0)) continue;
+    if (!point.hasDepth()) continue;
     const Eigen::Vector3d p = result.T_cam_kf * camera.backProject(point.u, point.v, 1.0 / point.inverse_depth);
     if (p.z() <= 1e-3) continue;
     flow += (camera.project(p) - Eigen::Vector2d(point.u, point.v)).norm();
     ++counted;
   }
   result.mean_flow = counted ? flow / counted : 0.0;
-  const double blocks = static_cast<double>(references_[0].point_index.size());
+  result.points = static_cast<int>(references_[0].point_index.size());
+  const double blocks = result.points;
   result.ok = blocks > 0 && result.points_in_view >= options_.min_points_in_view * blocks &&
               result.photometric_inliers >= options_.min_inlier_ratio * std::max(1, result.photometric_residuals);
   return result;

@@ -10,15 +10,17 @@ namespace semantic_edge_vo {
 namespace {
 
 /// A keyframe from a synthetic frame, its points at their exact depth.
-std::shared_ptr<Keyframe> exactKeyframe(const OdometryFrame& frame, const synthetic::SyntheticFrame& truth) {
+std::shared_ptr<Keyframe> exactKeyframe(const std::shared_ptr<const OdometryFrame>& frame,
+                                        const synthetic::SyntheticFrame& truth) {
   auto keyframe = std::make_shared<Keyframe>();
-  keyframe->pyramid = frame.pyramid;
+  keyframe->frame = frame;
   keyframe->T_world_cam = truth.T_world_cam;
-  for (MapPoint point : frame.candidates) {
+  for (MapPoint point : frame->candidates) {
     const int x = static_cast<int>(point.u + 0.5f), y = static_cast<int>(point.v + 0.5f);
     const float depth = truth.depth.at<float>(y, x);
     if (!(depth > 0.5f) || truth.dynamic.at<std::uint8_t>(y, x)) continue;
     point.inverse_depth = 1.0 / depth;
+    point.observations = 1;
     keyframe->points.push_back(point);
   }
   return keyframe;
@@ -52,7 +54,7 @@ TEST_P(TrackerOnSyntheticCity, RecoversTheTrueMotionFromExactDepth) {
   const auto keyframe_frame = builder.build(10, 1.0, truth_kf.gray, semanticEdges(truth_kf), &error);
   ASSERT_FALSE(error) << error.reason;
   Tracker tracker(TrackerOptions{});
-  tracker.setKeyframe(exactKeyframe(*keyframe_frame, truth_kf));
+  tracker.setKeyframe(exactKeyframe(keyframe_frame, truth_kf));
 
   for (int target_index : {11, 13}) {
     const synthetic::SyntheticFrame truth = sequence.frame(target_index);

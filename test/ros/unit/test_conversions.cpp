@@ -11,6 +11,7 @@ TEST(Conversions, FieldSurvivesTheMessageWithoutCopies) {
   edges.push_back(40.0f, 25.0f, -1.0f, 0.0f, 0.5f, 0b10u);
   FieldOptions options;
   options.pyramid_levels = 2;
+  options.truncation_radius = 40.0f;  // the lookups below reach 28 px
   auto data = buildNearestNeighborField(edges.view(), 64, 48, {"a", "b"}, options);
   const float* seeds_before = data.levels[0].seed_u.data();
   NearestNeighborField msg;

@@ -1,0 +1,45 @@
+#pragma once
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "semantic_edge_vo/image_pyramid.h"
+#include "semantic_edge_vo/keyframe.h"
+#include "semantic_edge_vo/nearest_neighbor_field.h"
+
+namespace semantic_edge_vo {
+
+struct EpipolarSearchOptions {
+  double min_inverse_depth = 0.002;  ///< search range, 1/m (map units)
+  double max_inverse_depth = 2.0;
+  double sigma_range = 2.5;          ///< search the prior inverse depth +- this many sigmas
+  double min_epipolar_length = 1.5;  ///< px; shorter: the frame adds no depth information
+  double max_epipolar_length = 120.0;
+  double max_pattern_error = 12.0;   ///< rms of the 8-pixel pattern at the best match, gray levels / px
+  double min_second_best_ratio = 1.3;  ///< second-best error over best error (a unique match)
+  double edge_radius = 1.5;          ///< edge points: a candidate needs an edge of a shared class this near, px
+  double pixel_sigma = 0.7;          ///< uncertainty of the matched position along the line, px
+
+  std::string validate() const;
+};
+
+/// A depth measurement of a host point in another frame.
+struct DepthMeasurement {
+  double inverse_depth = 0.0;   ///< 1/m
+  double variance = 0.0;        ///< 1/m^2
+};
+
+/// Searches a host keyframe point along its epipolar line in a target frame (gradient-magnitude
+/// pattern error, as DSO's immature points do; edge points only where the target has an edge of a
+/// class the point has, looked up in the target's SNNF) and returns the inverse depth of the best,
+/// unique match with its variance. The point needs a prior (inverse_depth > 0 with its variance) that
+/// bounds the search. False when the frame adds no information or no unique match.
+bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const PyramidLevel& target,
+                    const NearestNeighborFieldView* target_field, const Eigen::Isometry3d& T_target_host,
+                    const EpipolarSearchOptions& options, DepthMeasurement* measurement);
+
+/// Fuses a measurement into the point's inverse-depth estimate (1-D Kalman filter). The first
+/// measurement replaces a propagated prior; later ones more than 3 sigmas away are refused (false).
+bool fuseDepth(const DepthMeasurement& measurement, MapPoint* point);
+
+}  // namespace semantic_edge_vo

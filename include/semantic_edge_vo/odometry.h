@@ -1,0 +1,92 @@
+#pragma once
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "semantic_edge_vo/epipolar_depth.h"
+#include "semantic_edge_vo/keyframe.h"
+#include "semantic_edge_vo/tracker.h"
+#include "semantic_edge_vo/two_view_initializer.h"
+
+namespace semantic_edge_vo {
+
+enum class OdometryState {
+  kInitializing,  ///< no map yet (first frames, or after a loss)
+  kTracking,      ///< pose trusted
+  kLost,          ///< tracking failed on this frame: its pose is a prediction, not trusted
+};
+const char* toString(OdometryState state);
+
+struct OdometryOptions {
+  TrackerOptions tracker;
+  InitializerOptions initializer;
+  EpipolarSearchOptions epipolar;
+  double keyframe_flow = 30.0;         ///< new keyframe when the keyframe points moved this much on average, px
+  double keyframe_min_in_view = 0.6;   ///< ... or fewer of them are in view (fraction)
+  int keyframe_max_interval = 25;      ///< ... or this many frames passed
+  double depth_neighbour_radius = 30.0;  ///< new keyframe points take a prior depth from map points this near, px
+  int window_size = 7;                 ///< keyframes kept (the map published to users)
+
+  std::string validate() const;
+};
+
+/// The pose of one frame, final once returned.
+struct FramePose {
+  int index = 0;
+  double time = 0.0;
+  Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();  ///< camera-to-world, world = first camera
+  bool trusted = false;
+  OdometryState state = OdometryState::kInitializing;
+  bool recovered = false;   ///< first trusted pose after a loss
+  bool keyframe = false;    ///< the frame became a keyframe
+  int keyframe_id = -1;     ///< keyframe it was tracked against
+  TrackingResult tracking;
+  double tracking_ms = 0.0, mapping_ms = 0.0;
+};
+
+/// Monocular semantic edge odometry, sequential and deterministic: initialisation, frame-to-keyframe
+/// tracking (photometric + edge residuals), keyframe decisions, inverse depths of new points from
+/// epipolar search filtered over the following frames (edge points restricted to edges of the same
+/// class). The offline runner calls it directly; the nodelets split it between tracking and mapping.
+class Odometry {
+ public:
+  Odometry(const OdometryOptions& options, const PinholeCamera& camera);
+
+  /// Processes the next frame (frames in order). Returns the poses that became final: normally this
+  /// frame's; none while initialising; all the waiting frames' when initialisation succeeds.
+  std::vector<FramePose> process(const std::shared_ptr<const OdometryFrame>& frame);
+  /// Poses of frames still waiting for initialisation, as untrusted predictions (end of a sequence).
+  std::vector<FramePose> flush();
+
+  OdometryState state() const { return state_; }
+  const std::deque<std::shared_ptr<Keyframe>>& keyframes() const { return keyframes_; }
+
+ private:
+  std::vector<FramePose> initialize(const std::shared_ptr<const OdometryFrame>& frame);
+  void startInitialization(const std::shared_ptr<const OdometryFrame>& frame);
+  FramePose track(const std::shared_ptr<const OdometryFrame>& frame);
+  /// Refines the active keyframe's depths with a tracked frame.
+  void refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf);
+  void makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, const Eigen::Isometry3d& T_world_cam);
+  void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);
+  std::vector<Eigen::Isometry3d> guesses(const Keyframe& keyframe) const;
+  void remember(const FramePose& pose);
+
+  OdometryOptions options_;
+  PinholeCamera camera_;
+  Tracker tracker_;
+  TwoViewInitializer initializer_;
+  OdometryState state_ = OdometryState::kInitializing;
+  bool recovering_ = false;
+  std::vector<std::shared_ptr<const OdometryFrame>> waiting_;  ///< frames since the initialisation started
+  std::deque<std::shared_ptr<Keyframe>> keyframes_;
+  std::shared_ptr<Keyframe> active_;
+  int next_keyframe_id_ = 0;
+  int frames_since_keyframe_ = 0;
+  // The last two final poses (constant-velocity prediction) and whether any exists.
+  Eigen::Isometry3d T_world_last_ = Eigen::Isometry3d::Identity(), T_world_before_ = Eigen::Isometry3d::Identity();
+  int poses_seen_ = 0;
+};
+
+}  // namespace semantic_edge_vo

@@ -1,0 +1,59 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <opencv2/core/mat.hpp>
+
+#include "semantic_edge_vo/camera.h"
+
+namespace semantic_edge_vo {
+
+struct InitializerOptions {
+  double min_parallax = 10.0;       ///< median displacement of the tracked points needed, px
+  int max_frames = 12;              ///< give up (and restart from the newest frame) after this many frames
+  int min_points = 80;              ///< tracked points and triangulated inliers needed
+  double ransac_threshold = 0.75;   ///< essential-matrix RANSAC, px
+  double min_triangulation_angle = 0.1;  ///< deg; points seen under less parallax get no depth
+  double median_depth = 10.0;       ///< the map's scale: median depth of the first keyframe's points, map units
+
+  std::string validate() const;
+};
+
+/// Two-view initialisation for forward driving: the first frame's points are tracked frame to frame
+/// (pyramidal Lucas-Kanade with a forward-backward check); once they moved far enough, the relative
+/// pose comes from the essential matrix (RANSAC) and the points' depths from triangulation. Works
+/// within a few frames of forward motion, where DSO's random-depth initialisation often fails.
+class TwoViewInitializer {
+ public:
+  enum class Status { kNeedMoreFrames, kReady, kFailed };
+
+  TwoViewInitializer(const InitializerOptions& options, const PinholeCamera& camera) : options_(options), camera_(camera) {}
+
+  /// Starts from a first frame and the pixels (full resolution) whose depths are wanted.
+  void reset(const cv::Mat& gray, const std::vector<Eigen::Vector2f>& pixels);
+  /// Adds the next frame (CV_8UC1).
+  Status add(const cv::Mat& gray);
+
+  // Valid after kReady:
+  /// Pose of the first frame seen from the last one (maps first-frame points into it), map units.
+  const Eigen::Isometry3d& T_last_first() const { return T_last_first_; }
+  /// Inverse depth of each pixel given to reset() in the first frame, 0 where unknown.
+  const std::vector<double>& inverseDepths() const { return inverse_depths_; }
+  int framesAdded() const { return frames_; }
+
+ private:
+  bool solve();
+
+  InitializerOptions options_;
+  PinholeCamera camera_;
+  cv::Mat previous_;
+  std::vector<cv::Point2f> first_, current_;
+  std::vector<int> alive_;  ///< index into the reset() pixels of each tracked point
+  std::size_t pixel_count_ = 0;
+  int frames_ = 0;
+  Eigen::Isometry3d T_last_first_ = Eigen::Isometry3d::Identity();
+  std::vector<double> inverse_depths_;
+};
+
+}  // namespace semantic_edge_vo

@@ -1,0 +1,304 @@
+#include "semantic_edge_vo/odometry.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace semantic_edge_vo {
+namespace {
+
+double elapsedMs(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
+}
+
+cv::Mat gray8(const OdometryFrame& frame) {
+  cv::Mat gray;
+  frame.pyramid->level(0).intensity.convertTo(gray, CV_8U);
+  return gray;
+}
+
+double median(std::vector<double> values) {
+  auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+
+/// A measured inverse depth at a pixel of the keyframe that receives it.
+struct DepthSample {
+  Eigen::Vector2d pixel;
+  double inverse_depth;
+};
+
+/// Points without a measurement take the median of the samples within `radius` (bucketed), or of
+/// all samples, as a prior with a wide variance; the epipolar search then measures them.
+void propagateDepths(const std::vector<DepthSample>& samples, const PinholeCamera& camera, double radius,
+                     double default_inverse_depth, std::vector<MapPoint>* points) {
+  const int cols = static_cast<int>(std::ceil(camera.width / radius)), rows = static_cast<int>(std::ceil(camera.height / radius));
+  std::vector<std::vector<const DepthSample*>> buckets(static_cast<std::size_t>(cols * rows));
+  std::vector<double> all;
+  for (const DepthSample& sample : samples) {
+    const int bx = std::clamp(static_cast<int>(sample.pixel.x() / radius), 0, cols - 1);
+    const int by = std::clamp(static_cast<int>(sample.pixel.y() / radius), 0, rows - 1);
+    buckets[static_cast<std::size_t>(by * cols + bx)].push_back(&sample);
+    all.push_back(sample.inverse_depth);
+  }
+  const double fallback = all.empty() ? default_inverse_depth : median(all);
+  std::vector<double> near;
+  for (MapPoint& point : *points) {
+    if (point.hasDepth()) continue;
+    near.clear();
+    const int bx = static_cast<int>(point.u / radius), by = static_cast<int>(point.v / radius);
+    for (int y = std::max(0, by - 1); y <= std::min(rows - 1, by + 1); ++y)
+      for (int x = std::max(0, bx - 1); x <= std::min(cols - 1, bx + 1); ++x)
+        for (const DepthSample* sample : buckets[static_cast<std::size_t>(y * cols + x)])
+          if ((sample->pixel - Eigen::Vector2d(point.u, point.v)).norm() <= radius) near.push_back(sample->inverse_depth);
+    point.inverse_depth = near.empty() ? fallback : median(near);
+    point.inverse_depth_variance = std::pow((near.empty() ? 1.0 : 0.5) * point.inverse_depth, 2);
+    point.observations = 0;
+  }
+}
+
+}  // namespace
+
+const char* toString(OdometryState state) {
+  switch (state) {
+    case OdometryState::kInitializing: return "initializing";
+    case OdometryState::kTracking: return "tracking";
+    case OdometryState::kLost: return "lost";
+  }
+  return "unknown";
+}
+
+std::string OdometryOptions::validate() const {
+  std::string error = tracker.validate();
+  if (error.empty()) error = initializer.validate();
+  if (error.empty()) error = epipolar.validate();
+  if (error.empty() && !(keyframe_flow > 0 && keyframe_min_in_view >= 0 && keyframe_min_in_view <= 1))
+    error = "keyframe_flow must be > 0 px and keyframe_min_in_view in [0, 1]";
+  if (error.empty() && (keyframe_max_interval < 1 || window_size < 1 || !(depth_neighbour_radius > 0)))
+    error = "keyframe_max_interval and window_size must be >= 1, depth_neighbour_radius > 0 px";
+  return error;
+}
+
+Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera)
+    : options_(options), camera_(camera), tracker_(options.tracker), initializer_(options.initializer, camera) {}
+
+std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFrame>& frame) {
+  if (state_ != OdometryState::kTracking) return initialize(frame);
+  return {track(frame)};
+}
+
+std::vector<FramePose> Odometry::flush() {
+  std::vector<FramePose> poses;
+  for (const auto& frame : waiting_) {
+    FramePose pose;
+    pose.index = frame->index;
+    pose.time = frame->time;
+    pose.T_world_cam = T_world_last_;
+    pose.state = OdometryState::kInitializing;
+    poses.push_back(pose);
+  }
+  waiting_.clear();
+  return poses;
+}
+
+void Odometry::startInitialization(const std::shared_ptr<const OdometryFrame>& frame) {
+  waiting_ = {frame};
+  std::vector<Eigen::Vector2f> pixels;
+  for (const MapPoint& point : frame->candidates) pixels.emplace_back(point.u, point.v);
+  initializer_.reset(gray8(*frame), pixels);
+}
+
+std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const OdometryFrame>& frame) {
+  const auto start = std::chrono::steady_clock::now();
+  state_ = OdometryState::kInitializing;
+  if (waiting_.empty()) {
+    startInitialization(frame);
+    return {};
+  }
+  waiting_.push_back(frame);
+  const TwoViewInitializer::Status status = initializer_.add(gray8(*frame));
+  if (status == TwoViewInitializer::Status::kNeedMoreFrames) return {};
+  if (status == TwoViewInitializer::Status::kFailed) {
+    // The waiting frames get untrusted predictions; the newest starts the next attempt.
+    const std::shared_ptr<const OdometryFrame> newest = waiting_.back();
+    waiting_.pop_back();
+    std::vector<FramePose> poses = flush();
+    for (const FramePose& pose : poses) remember(pose);
+    startInitialization(newest);
+    return poses;
+  }
+
+  // The first waiting frame becomes the first keyframe, anchored where the odometry predicts it
+  // (identity at the very start), so that odom stays continuous after a loss.
+  Eigen::Isometry3d T_last_first = initializer_.T_last_first();
+  double depth_scale = 1.0;
+  if (recovering_ && poses_seen_ >= 2) {
+    const double speed = (T_world_before_.inverse() * T_world_last_).translation().norm();
+    const double baseline = T_last_first.translation().norm();
+    if (speed > 0.0 && baseline > 0.0) depth_scale = speed * static_cast<double>(waiting_.size() - 1) / baseline;
+  }
+  T_last_first.translation() *= depth_scale;
+  const Eigen::Isometry3d T_world_first =
+      poses_seen_ >= 2 ? T_world_last_ * (T_world_before_.inverse() * T_world_last_) : T_world_last_;
+
+  auto keyframe = std::make_shared<Keyframe>();
+  keyframe->id = next_keyframe_id_++;
+  keyframe->T_world_cam = T_world_first;
+  keyframe->frame = waiting_.front();
+  keyframe->points = waiting_.front()->candidates;
+  const std::vector<double>& inverse_depths = initializer_.inverseDepths();
+  for (std::size_t i = 0; i < keyframe->points.size(); ++i) {
+    if (!(inverse_depths[i] > 0.0)) continue;
+    MapPoint& point = keyframe->points[i];
+    point.inverse_depth = inverse_depths[i] / depth_scale;
+    point.inverse_depth_variance = std::pow(0.1 * point.inverse_depth, 2);
+    point.observations = 1;
+  }
+  std::vector<DepthSample> samples;
+  for (const MapPoint& point : keyframe->points)
+    if (point.hasDepth()) samples.push_back({Eigen::Vector2d(point.u, point.v), point.inverse_depth});
+  propagateDepths(samples, camera_, options_.depth_neighbour_radius, 1.0 / options_.initializer.median_depth, &keyframe->points);
+  keyframes_.push_back(keyframe);
+  setActiveKeyframe(keyframe);
+
+  std::vector<FramePose> poses;
+  FramePose first;
+  first.index = keyframe->frame->index;
+  first.time = keyframe->frame->time;
+  first.T_world_cam = T_world_first;
+  first.trusted = true;
+  first.state = OdometryState::kTracking;
+  first.recovered = recovering_;
+  first.keyframe = true;
+  first.keyframe_id = keyframe->id;
+  first.mapping_ms = elapsedMs(start);
+  poses.push_back(first);
+  remember(first);
+  const std::size_t n = waiting_.size();
+  for (std::size_t j = 1; j < n; ++j) {
+    const auto frame_start = std::chrono::steady_clock::now();
+    const Eigen::Isometry3d guess = se3Exp(static_cast<double>(j) / static_cast<double>(n - 1) * se3Log(T_last_first));
+    const TrackingResult result = tracker_.track(*waiting_[j]->pyramid, waiting_[j]->fieldOrNull(), {guess});
+    FramePose pose;
+    pose.index = waiting_[j]->index;
+    pose.time = waiting_[j]->time;
+    pose.T_world_cam = orthonormalized(T_world_first * result.T_cam_kf.inverse());
+    pose.trusted = result.ok;
+    pose.state = result.ok ? OdometryState::kTracking : OdometryState::kLost;
+    pose.keyframe_id = keyframe->id;
+    pose.tracking = result;
+    pose.tracking_ms = elapsedMs(frame_start);
+    if (result.ok) refineDepths(*waiting_[j], result.T_cam_kf);
+    poses.push_back(pose);
+    remember(pose);
+  }
+  waiting_.clear();
+  state_ = OdometryState::kTracking;
+  recovering_ = false;
+  frames_since_keyframe_ = static_cast<int>(n) - 1;
+  return poses;
+}
+
+std::vector<Eigen::Isometry3d> Odometry::guesses(const Keyframe& keyframe) const {
+  std::vector<Eigen::Isometry3d> world_poses = {T_world_last_};
+  if (poses_seen_ >= 2) {
+    const Vector6d velocity = se3Log(T_world_before_.inverse() * T_world_last_);
+    // Constant velocity first, then no motion, half and double the velocity.
+    world_poses = {T_world_last_ * se3Exp(velocity), T_world_last_, T_world_last_ * se3Exp(0.5 * velocity),
+                   T_world_last_ * se3Exp(2.0 * velocity)};
+  }
+  std::vector<Eigen::Isometry3d> guesses;
+  for (const Eigen::Isometry3d& T_world_cam : world_poses) guesses.push_back(T_world_cam.inverse() * keyframe.T_world_cam);
+  return guesses;
+}
+
+FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
+  const auto start = std::chrono::steady_clock::now();
+  FramePose pose;
+  pose.index = frame->index;
+  pose.time = frame->time;
+  pose.keyframe_id = active_->id;
+  pose.tracking = tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_));
+  pose.tracking_ms = elapsedMs(start);
+  if (!pose.tracking.ok) {
+    // Lost: report the prediction, untrusted, and initialise again from the next frame.
+    pose.T_world_cam = poses_seen_ >= 2 ? T_world_last_ * (T_world_before_.inverse() * T_world_last_) : T_world_last_;
+    pose.state = OdometryState::kLost;
+    state_ = OdometryState::kInitializing;
+    recovering_ = true;
+    remember(pose);
+    return pose;
+  }
+  pose.T_world_cam = orthonormalized(active_->T_world_cam * pose.tracking.T_cam_kf.inverse());
+  pose.trusted = true;
+  pose.state = OdometryState::kTracking;
+  const auto mapping_start = std::chrono::steady_clock::now();
+  refineDepths(*frame, pose.tracking.T_cam_kf);
+  ++frames_since_keyframe_;
+  const bool few_in_view = pose.tracking.points_in_view < options_.keyframe_min_in_view * pose.tracking.points;
+  if (pose.tracking.mean_flow > options_.keyframe_flow || few_in_view || frames_since_keyframe_ >= options_.keyframe_max_interval) {
+    makeKeyframe(frame, pose.T_world_cam);
+    pose.keyframe = true;
+  }
+  pose.mapping_ms = elapsedMs(mapping_start);
+  remember(pose);
+  return pose;
+}
+
+void Odometry::refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf) {
+  const PyramidLevel& host = active_->frame->pyramid->level(0);
+  const PyramidLevel& target = frame.pyramid->level(0);
+  DepthMeasurement measurement;
+  for (MapPoint& point : active_->points)
+    if (searchEpipolar(point, host, target, frame.fieldOrNull(), T_frame_kf, options_.epipolar, &measurement))
+      fuseDepth(measurement, &point);
+  tracker_.setKeyframe(active_);
+}
+
+void Odometry::makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, const Eigen::Isometry3d& T_world_cam) {
+  auto keyframe = std::make_shared<Keyframe>();
+  keyframe->id = next_keyframe_id_++;
+  keyframe->T_world_cam = T_world_cam;
+  keyframe->frame = frame;
+  keyframe->points = frame->candidates;
+
+  // Prior depths: the active keyframe's measured points, seen from the new keyframe.
+  const Eigen::Isometry3d T_new_old = T_world_cam.inverse() * active_->T_world_cam;
+  std::vector<DepthSample> samples;
+  for (const MapPoint& point : active_->points) {
+    if (!point.hasDepth()) continue;
+    const Eigen::Vector3d p = T_new_old * camera_.backProject(point.u, point.v, 1.0 / point.inverse_depth);
+    const Eigen::Vector2d pixel = camera_.project(p);
+    if (p.z() > 1e-3 && camera_.contains(pixel.x(), pixel.y())) samples.push_back({pixel, 1.0 / p.z()});
+  }
+  propagateDepths(samples, camera_, options_.depth_neighbour_radius, 1.0 / options_.initializer.median_depth, &keyframe->points);
+  // Measure the new points at once against the previous keyframe: the widest baseline at hand.
+  const Eigen::Isometry3d T_old_new = T_new_old.inverse();
+  const PyramidLevel& host = frame->pyramid->level(0);
+  const PyramidLevel& target = active_->frame->pyramid->level(0);
+  DepthMeasurement measurement;
+  for (MapPoint& point : keyframe->points)
+    if (searchEpipolar(point, host, target, active_->frame->fieldOrNull(), T_old_new, options_.epipolar, &measurement))
+      fuseDepth(measurement, &point);
+
+  keyframes_.push_back(keyframe);
+  while (static_cast<int>(keyframes_.size()) > options_.window_size) keyframes_.pop_front();
+  setActiveKeyframe(keyframe);
+  frames_since_keyframe_ = 0;
+}
+
+void Odometry::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {
+  active_ = std::move(keyframe);
+  tracker_.setKeyframe(active_);
+}
+
+void Odometry::remember(const FramePose& pose) {
+  T_world_before_ = T_world_last_;
+  T_world_last_ = orthonormalized(pose.T_world_cam);
+  ++poses_seen_;
+}
+
+}  // namespace semantic_edge_vo
