@@ -15,7 +15,8 @@ struct EpipolarSearchOptions {
   double sigma_range = 2.5;          ///< search the prior inverse depth +- this many sigmas
   double min_epipolar_length = 1.5;  ///< px; shorter: the frame adds no depth information
   double max_epipolar_length = 120.0;
-  double max_pattern_error = 12.0;   ///< rms of the 8-pixel pattern at the best match, gray levels / px
+  double max_pattern_error = 12.0;   ///< rms of the zero-mean 8-pixel intensity pattern at the best match, gray levels
+  double min_gradient_alignment = 0.4;  ///< |cos| between the image gradient and the epipolar line, at least
   double min_second_best_ratio = 1.3;  ///< second-best error over best error (a unique match)
   double edge_radius = 1.5;          ///< edge points: a candidate needs an edge of a shared class this near, px
   double pixel_sigma = 0.7;          ///< uncertainty of the matched position along the line, px
@@ -29,8 +30,9 @@ struct DepthMeasurement {
   double variance = 0.0;        ///< 1/m^2
 };
 
-/// Searches a host keyframe point along its epipolar line in a target frame (gradient-magnitude
-/// pattern error, as DSO's immature points do; edge points only where the target has an edge of a
+/// Searches a host keyframe point along its epipolar line in a target frame (zero-mean intensity
+/// pattern warped by the candidate depth, as DSO's immature points do; only where the image gradient
+/// crosses the line; edge points only where the target has an edge of a
 /// class the point has, looked up in the target's SNNF) and returns the inverse depth of the best,
 /// unique match with its variance. The point needs a prior (inverse_depth > 0 with its variance) that
 /// bounds the search. False when the frame adds no information or no unique match.
@@ -39,7 +41,8 @@ bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const Pyram
                     const EpipolarSearchOptions& options, DepthMeasurement* measurement);
 
 /// Fuses a measurement into the point's inverse-depth estimate (1-D Kalman filter). The first
-/// measurement replaces a propagated prior; later ones more than 3 sigmas away are refused (false).
+/// measurement replaces a propagated prior; one more than 3 sigmas away replaces a single earlier
+/// measurement (either may be the outlier) and is refused (false) by two or more agreeing ones.
 bool fuseDepth(const DepthMeasurement& measurement, MapPoint* point);
 
 }  // namespace semantic_edge_vo

@@ -15,8 +15,11 @@ struct MapPoint {
   int observations = 0;                 ///< depth measurements fused so far
 
   bool isEdge() const { return class_mask != 0; }
-  /// Used by tracking and mapping only once its depth was measured (a propagated prior is not enough).
-  bool hasDepth() const { return observations > 0 && inverse_depth > 0.0; }
+  /// Used by tracking and mapping only once its depth was measured (a propagated prior is not enough)
+  /// to within 30 % (one sigma).
+  bool hasDepth() const {
+    return observations > 0 && inverse_depth > 0.0 && inverse_depth_variance < 0.09 * inverse_depth * inverse_depth;
+  }
 };
 
 }  // namespace semantic_edge_vo

@@ -22,9 +22,9 @@ struct OdometryOptions {
   TrackerOptions tracker;
   InitializerOptions initializer;
   EpipolarSearchOptions epipolar;
-  double keyframe_flow = 30.0;         ///< new keyframe when the keyframe points moved this much on average, px
+  double keyframe_flow = 60.0;         ///< new keyframe when the keyframe points moved this much on average, px
   double keyframe_min_in_view = 0.6;   ///< ... or fewer of them are in view (fraction)
-  int keyframe_max_interval = 25;      ///< ... or this many frames passed
+  int keyframe_max_interval = 8;      ///< ... or this many frames passed
   double depth_neighbour_radius = 30.0;  ///< new keyframe points take a prior depth from map points this near, px
   int window_size = 7;                 ///< keyframes kept (the map published to users)
 

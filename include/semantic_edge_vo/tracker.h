@@ -16,6 +16,7 @@ struct TrackerOptions {
   double edge_huber = 1.5;           ///< Huber threshold of point-to-tangent residuals, px of the level
   double edge_sigma = 1.0;           ///< their scale, px of the level
   double edge_weight = 2.0;          ///< weight of edge residuals (paper III-C: more in tracking than in mapping)
+  double accept_inlier_ratio = 0.8;  ///< the constant-velocity guess is taken when this many residuals are inliers
   double min_inlier_ratio = 0.5;     ///< lost when fewer photometric residuals are inliers at level 0
   double min_points_in_view = 0.25;  ///< lost when fewer keyframe points project into the frame
 
@@ -39,7 +40,8 @@ struct TrackingResult {
 /// Aligns frames to the active keyframe (paper III-C): photometric residuals on gradient magnitude
 /// over a small pixel pattern for every point, plus point-to-tangent residuals against the frame's
 /// nearest-neighbour field for edge points, Huber-weighted, Levenberg-Marquardt on SE(3),
-/// coarse to fine, from the best of several initial guesses.
+/// coarse to fine, from the first initial guess (constant velocity) when it tracks well, else from
+/// the one of several guesses that ends with the lowest cost.
 class Tracker {
  public:
   explicit Tracker(const TrackerOptions& options) : options_(options) {}

@@ -28,6 +28,7 @@ std::string EpipolarSearchOptions::validate() const {
   else if (!(min_epipolar_length > 0 && max_epipolar_length > min_epipolar_length)) error << "need 0 < min_epipolar_length < max_epipolar_length";
   else if (!(max_pattern_error > 0 && min_second_best_ratio >= 1 && edge_radius > 0 && pixel_sigma > 0 && sigma_range > 0))
     error << "pattern error, ratio, edge radius, pixel sigma and sigma range must be positive (ratio >= 1)";
+  else if (!(min_gradient_alignment >= 0 && min_gradient_alignment < 1)) error << "min_gradient_alignment must be in [0, 1)";
   return error.str();
 }
 
@@ -35,9 +36,15 @@ bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const Pyram
                     const NearestNeighborFieldView* target_field, const Eigen::Isometry3d& T_target_host,
                     const EpipolarSearchOptions& options, DepthMeasurement* measurement) {
   if (!host.camera.contains(point.u, point.v, 3.0)) return false;
+  // Zero-mean intensity patterns: more distinctive along the line than gradient magnitude (an edge
+  // looks alike on both of its sides there), and insensitive to exposure offsets.
   float reference[kPattern];
-  for (int j = 0; j < kPattern; ++j)
-    reference[j] = sampleBilinear(host.gradient, point.u + kPatternOffsets[j][0], point.v + kPatternOffsets[j][1]);
+  float reference_mean = 0.0f;
+  for (int j = 0; j < kPattern; ++j) {
+    reference[j] = sampleBilinear(host.intensity, point.u + kPatternOffsets[j][0], point.v + kPatternOffsets[j][1]);
+    reference_mean += reference[j] / kPattern;
+  }
+  for (float& value : reference) value -= reference_mean;
 
   // The point at inverse depth rho is R * ray + rho * t (up to scale): its pixel moves along the line.
   // Each pattern pixel has its own ray, so the pattern is warped as the depth would warp it (forward
@@ -64,6 +71,15 @@ bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const Pyram
   if (!pixelAt(rho_min, &a) || !pixelAt(rho_max, &b)) return false;
   const double length = (b - a).norm();
   if (length < options.min_epipolar_length) return false;  // no parallax: nothing to learn
+  // Aperture: along a line parallel to the image structure every position matches (paper III-C:
+  // edge depths are unobservable where the epipolar line follows the edge). Measure only where the
+  // gradient has a component along the line; the weaker it is, the less the match is worth.
+  const Eigen::Vector2d gradient(
+      sampleBilinear(host.intensity, point.u + 1.0f, point.v) - sampleBilinear(host.intensity, point.u - 1.0f, point.v),
+      sampleBilinear(host.intensity, point.u, point.v + 1.0f) - sampleBilinear(host.intensity, point.u, point.v - 1.0f));
+  if (gradient.norm() < 1e-3) return false;
+  const double alignment = std::abs(gradient.normalized().dot((b - a) / length));
+  if (alignment < options.min_gradient_alignment) return false;
   if (length > options.max_epipolar_length) {
     // Too uncertain to search all of it: centre the window on the prior (or the middle).
     const double centre = point.inverse_depth;
@@ -81,28 +97,29 @@ bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const Pyram
     if (!pixelAt(rho, &pixel) || !target.camera.contains(pixel.x(), pixel.y(), 4.0)) continue;
     const float x = static_cast<float>(pixel.x()), y = static_cast<float>(pixel.y());
     if (point.isEdge() && target_field && !hasSharedClassEdge(*target_field, point.class_mask, x, y, options.edge_radius)) continue;
-    double error = 0.0;
-    for (int j = 0; j < kPattern && error < std::numeric_limits<double>::max(); ++j) {
+    float values[kPattern];
+    float mean = 0.0f;
+    bool inside = true;
+    for (int j = 0; j < kPattern && inside; ++j) {
       const Eigen::Vector3d q = rays[j] + rho * t;
       const Eigen::Vector2d warped = target.camera.project(q);
-      if (q.z() <= 1e-6 || !target.camera.contains(warped.x(), warped.y(), 1.0)) {
-        error = std::numeric_limits<double>::max();
-        break;
-      }
-      const double r = sampleBilinear(target.gradient, static_cast<float>(warped.x()), static_cast<float>(warped.y())) - reference[j];
-      error += r * r;
+      inside = q.z() > 1e-6 && target.camera.contains(warped.x(), warped.y(), 1.0);
+      if (inside) values[j] = sampleBilinear(target.intensity, static_cast<float>(warped.x()), static_cast<float>(warped.y()));
+      mean += values[j] / kPattern;
     }
-    if (error == std::numeric_limits<double>::max()) continue;
+    if (!inside) continue;
+    double error = 0.0;
+    for (int j = 0; j < kPattern; ++j) error += std::pow(values[j] - mean - reference[j], 2);
     errors[static_cast<std::size_t>(s)] = error;
     if (best < 0 || error < errors[static_cast<std::size_t>(best)]) best = s;
   }
   if (best < 0) return false;
   const double best_error = errors[static_cast<std::size_t>(best)];
   if (std::sqrt(best_error / kPattern) > options.max_pattern_error) return false;
-  // Unique: nothing as good farther than a pixel (two half-pixel steps) away.
+  // Unique: nothing nearly as good farther than two pixels (four half-pixel steps) away.
   double second = std::numeric_limits<double>::max();
   for (int s = 0; s <= steps; ++s)
-    if (std::abs(s - best) > 2) second = std::min(second, errors[static_cast<std::size_t>(s)]);
+    if (std::abs(s - best) > 4) second = std::min(second, errors[static_cast<std::size_t>(s)]);
   if (second < options.min_second_best_ratio * best_error + 1e-9) return false;
 
   // Sub-step refinement: a parabola through the best error and its neighbours.
@@ -117,7 +134,8 @@ bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const Pyram
   measurement->inverse_depth = rho_min + (best + offset) * step_rho;
   const double pixels_per_step = (b - a).norm() / steps;
   const double rho_per_pixel = step_rho / pixels_per_step;
-  measurement->variance = rho_per_pixel * rho_per_pixel * options.pixel_sigma * options.pixel_sigma;
+  const double pixel_sigma = options.pixel_sigma / alignment;
+  measurement->variance = rho_per_pixel * rho_per_pixel * pixel_sigma * pixel_sigma;
   return measurement->inverse_depth > 0.0;
 }
 
@@ -130,7 +148,14 @@ bool fuseDepth(const DepthMeasurement& measurement, MapPoint* point) {
   }
   const double innovation = measurement.inverse_depth - point->inverse_depth;
   const double total = point->inverse_depth_variance + measurement.variance;
-  if (innovation * innovation > 9.0 * total) return false;
+  if (innovation * innovation > 9.0 * total) {
+    // Two measurements that disagree: either may be the outlier. Keep the newer one and start over;
+    // with two or more agreeing measurements behind it, the estimate stands and this one is refused.
+    if (point->observations > 1) return false;
+    point->inverse_depth = measurement.inverse_depth;
+    point->inverse_depth_variance = measurement.variance;
+    return true;
+  }
   const double gain = point->inverse_depth_variance / total;
   point->inverse_depth += gain * innovation;
   point->inverse_depth_variance *= 1.0 - gain;

@@ -30,7 +30,8 @@ std::string TrackerOptions::validate() const {
   else if (!(photometric_huber > 0 && photometric_sigma > 0 && edge_huber > 0 && edge_sigma > 0))
     error << "Huber thresholds and sigmas must be > 0";
   else if (!(edge_weight >= 0)) error << "edge_weight must be >= 0";
-  else if (!(min_inlier_ratio >= 0 && min_inlier_ratio <= 1 && min_points_in_view >= 0 && min_points_in_view <= 1))
+  else if (!(min_inlier_ratio >= 0 && min_inlier_ratio <= 1 && accept_inlier_ratio >= 0 && accept_inlier_ratio <= 1 &&
+             min_points_in_view >= 0 && min_points_in_view <= 1))
     error << "min_inlier_ratio and min_points_in_view must be in [0, 1]";
   return error.str();
 }
@@ -187,23 +188,25 @@ TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFi
   if (!keyframe_ || references_.empty()) return result;
   const int levels = std::min({static_cast<int>(references_.size()), frame.levels(),
                                field ? static_cast<int>(field->levels.size()) : 99});
-  const int coarsest = levels - 1;
-  // The best guess after optimising the coarsest level wins (DSO tries several the same way).
+  // The first guess (constant velocity) is taken when it tracks well; otherwise every guess is
+  // optimised through all levels and the lowest full-resolution cost wins.
+  const std::vector<Eigen::Isometry3d> candidates =
+      guesses.empty() ? std::vector<Eigen::Isometry3d>{Eigen::Isometry3d::Identity()} : guesses;
   double best_cost = std::numeric_limits<double>::max();
-  const std::vector<Eigen::Isometry3d> candidates = guesses.empty() ? std::vector<Eigen::Isometry3d>{Eigen::Isometry3d::Identity()} : guesses;
   for (std::size_t g = 0; g < candidates.size(); ++g) {
-    Eigen::Isometry3d T = candidates[g];
-    int iterations = 0;
-    const double cost = optimizeLevel(coarsest, frame, field, &T, &iterations);
-    result.iterations += iterations;
+    TrackingResult attempt;
+    attempt.T_cam_kf = candidates[g];
+    attempt.guess = static_cast<int>(g);
+    for (int level = levels - 1; level >= 0; --level) optimizeLevel(level, frame, field, &attempt.T_cam_kf, &attempt.iterations);
+    const double cost = evaluate(0, attempt.T_cam_kf, frame, field, nullptr, &attempt);
+    const int iterations = result.iterations + attempt.iterations;
     if (cost < best_cost) {
       best_cost = cost;
-      result.T_cam_kf = T;
-      result.guess = static_cast<int>(g);
+      result = attempt;
     }
+    result.iterations = iterations;
+    if (g == 0 && attempt.photometric_inliers >= options_.accept_inlier_ratio * std::max(1, attempt.photometric_residuals)) break;
   }
-  for (int level = coarsest - 1; level >= 0; --level) optimizeLevel(level, frame, field, &result.T_cam_kf, &result.iterations);
-  evaluate(0, result.T_cam_kf, frame, field, nullptr, &result);
 
   // Mean flow of the keyframe points: keyframe decisions.
   const PinholeCamera& camera = frame.level(0).camera;
