@@ -20,6 +20,7 @@ std::shared_ptr<Keyframe> exactKeyframe(const std::shared_ptr<const OdometryFram
     const float depth = truth.depth.at<float>(y, x);
     if (!(depth > 0.5f) || truth.dynamic.at<std::uint8_t>(y, x)) continue;
     point.inverse_depth = 1.0 / depth;
+    point.inverse_depth_variance = std::pow(0.01 * point.inverse_depth, 2);  // exact
     point.observations = 1;
     keyframe->points.push_back(point);
   }
