@@ -1,8 +1,7 @@
-// Tracking: SemanticEdgeFrame + NearestNeighborField (paired by stamp) + KeyframeMap -> pose of
-// every frame on tf (odom -> base_link), nav_msgs/Odometry, TrackingStatus, TrackedFrame.
-//
-// Foundation stage: the frame-to-keyframe alignment is not in yet, so the camera is held at its
-// start pose and the status says INITIALIZING. Frames, stamps, pairing and outputs are final.
+// Tracking: SemanticEdgeFrame + NearestNeighborField (paired by stamp) -> the odometry (core
+// Odometry: initialisation, frame-to-keyframe tracking, depth filtering, keyframe decisions) ->
+// tf odom -> base_link and nav_msgs/Odometry for every trusted pose, TrackingStatus for every
+// frame, TrackedFrame and the KeyframeMap for the Mapping nodelet.
 #include <message_filters/subscriber.h>
 #include <message_filters/time_synchronizer.h>
 #include <nav_msgs/Odometry.h>
@@ -17,11 +16,12 @@
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
 #include "semantic_edge_vo/TrackedFrame.h"
 #include "semantic_edge_vo/TrackingStatus.h"
+#include "semantic_edge_vo/odometry.h"
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
-#include "semantic_edge_vo/ros/parameter_loader.h"
+#include "semantic_edge_vo/ros/options_loading.h"
 
 namespace semantic_edge_vo {
 
@@ -36,10 +36,13 @@ class TrackingNodelet : public nodelet::Nodelet {
     loader.load("base_frame", &base_frame_);
     loader.load("publish_tf", &publish_tf_);
     loader.load("publish_default_camera_tf", &publish_default_camera_tf_);
+    loader.load("use_edges", &use_edges_);
+    std::string error = loadOdometryOptions(&loader, &options_);
     NODELET_INFO_STREAM("parameters:" << loader.summary());
-    if (odom_frame_.empty() || base_frame_.empty() || odom_frame_ == base_frame_) {
-      NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: odom_frame and base_frame must be "
-                           "non-empty and differ (got '" << odom_frame_ << "', '" << base_frame_ << "')");
+    if (error.empty() && (odom_frame_.empty() || base_frame_.empty() || odom_frame_ == base_frame_))
+      error = "odom_frame and base_frame must be non-empty and differ";
+    if (!error.empty()) {
+      NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
       return;
     }
     rejections_ = std::make_unique<InputRejections>(getName());
@@ -48,44 +51,62 @@ class TrackingNodelet : public nodelet::Nodelet {
     odometry_publisher_ = node.advertise<nav_msgs::Odometry>("odometry", 10);
     status_publisher_ = node.advertise<TrackingStatus>("tracking_status", 10);
     tracked_publisher_ = node.advertise<TrackedFrame>("tracked_frame", 10);
-    frame_subscriber_.subscribe(node, "edge_frame", 5);
-    field_subscriber_.subscribe(node, "nn_field", 5);
-    sync_ = std::make_unique<Sync>(frame_subscriber_, field_subscriber_, 10);
+    map_publisher_ = node.advertise<KeyframeMap>("keyframe_map", 2, /*latch=*/true);
+    // Deep enough queues to absorb a slow frame (a keyframe) without dropping the next ones.
+    frame_subscriber_.subscribe(node, "edge_frame", 20);
+    field_subscriber_.subscribe(node, "nn_field", 20);
+    sync_ = std::make_unique<Sync>(frame_subscriber_, field_subscriber_, 20);
     sync_->registerCallback(&TrackingNodelet::onFrame, this);
-    map_subscriber_ = node.subscribe("keyframe_map", 2, &TrackingNodelet::onKeyframeMap, this);
-  }
-
-  void onKeyframeMap(const KeyframeMapConstPtr& map) {
-    tracer_.received(map_subscriber_.getTopic(), map.get(), map->header.stamp);
-    std::lock_guard<std::mutex> lock(map_mutex_);
-    keyframe_map_ = map;
   }
 
   void onFrame(const SemanticEdgeFrameConstPtr& frame, const NearestNeighborFieldConstPtr& field) {
     tracer_.received(frame_subscriber_.getTopic(), frame.get(), frame->header.stamp);
     tracer_.received(field_subscriber_.getTopic(), field.get(), field->header.stamp);
-    const ros::WallTime start = ros::WallTime::now();
     std::string error;
     const NearestNeighborFieldView fields = fieldView(*field, &error);
     if (error.empty()) error = fields.validate();
+    if (error.empty() && static_cast<int>(fields.levels.size()) < options_.tracker.levels)
+      error = "the field has " + std::to_string(fields.levels.size()) + " levels, tracking needs " +
+              std::to_string(options_.tracker.levels);
     if (!error.empty()) {
       rejections_->reject("frame", "invalid_field", error);
       return;
     }
-    std::uint32_t keyframe_id = 0;
-    {
-      std::lock_guard<std::mutex> lock(map_mutex_);
-      if (keyframe_map_ && !keyframe_map_->keyframes.empty()) keyframe_id = keyframe_map_->keyframes.back().id;
+    const PinholeCamera camera = cameraFromInfo(frame->camera_info);
+    if (!odometry_ || camera.width != camera_.width || camera.height != camera_.height) {
+      if (odometry_) NODELET_WARN_STREAM("the image size changed: the odometry starts over");
+      camera_ = camera;
+      odometry_ = std::make_unique<Odometry>(options_, camera_);
+      stamps_.clear();
+      frame_count_ = 0;
     }
-    const std::string& camera_frame = frame->header.frame_id;
+    stamps_[frame_count_] = frame->header;
+    const auto odometry_frame =
+        odometryFrameFrom(frame, use_edges_ ? field : NearestNeighborFieldConstPtr(), frame_count_++, options_.tracker.levels);
+    const std::vector<FramePose> poses = odometry_->process(odometry_frame);
+    if (poses.empty()) publishStatus(frame->header, nullptr);  // waiting for initialisation
+    bool new_keyframe = false;
+    for (const FramePose& pose : poses) {
+      publishPose(pose);
+      new_keyframe |= pose.keyframe;
+    }
+    if (new_keyframe) publishKeyframes(frame->header.stamp);
+    while (!stamps_.empty() && stamps_.begin()->first < frame_count_ - 100) stamps_.erase(stamps_.begin());
+  }
+
+  void publishPose(const FramePose& pose) {
+    const auto header = stamps_.find(pose.index);
+    if (header == stamps_.end()) return;
+    const ros::Time stamp = header->second.stamp;
+    publishStatus(header->second, &pose);
+    if (!pose.trusted) return;  // never publish a pose that is not trusted
+
+    const std::string& camera_frame = header->second.frame_id;
     bool extrinsic_from_tf = false;
     const Eigen::Isometry3d T_base_cam = extrinsic_->baseFromCamera(camera_frame, &extrinsic_from_tf);
-    if (!extrinsic_from_tf && publish_default_camera_tf_ && camera_frame != announced_camera_frame_) {
-      publishDefaultCameraTf(camera_frame, frame->header.stamp, T_base_cam);
-    }
-    const Eigen::Isometry3d T_odom_base = baseInOdom(T_world_cam_, T_base_cam);
-    const ros::Time stamp = frame->header.stamp;
-
+    if (!extrinsic_from_tf && publish_default_camera_tf_ && camera_frame != announced_camera_frame_)
+      publishDefaultCameraTf(camera_frame, stamp, T_base_cam);
+    const Eigen::Isometry3d T_odom_base = baseInOdom(pose.T_world_cam, T_base_cam);
     if (publish_tf_) {
       geometry_msgs::TransformStamped transform = tf2::eigenToTransform(T_odom_base);
       transform.header.stamp = stamp;
@@ -105,22 +126,72 @@ class TrackingNodelet : public nodelet::Nodelet {
     auto tracked = boost::make_shared<TrackedFrame>();
     tracked->header.stamp = stamp;
     tracked->header.frame_id = "world";
-    tracked->pose_world_camera = toPoseMsg(T_world_cam_);
+    tracked->camera_frame_id = camera_frame;
+    tracked->pose_world_camera = toPoseMsg(pose.T_world_cam);
     tracked->pose_trusted = true;
-    tracked->keyframe_id = keyframe_id;
+    tracked->keyframe_id = static_cast<std::uint32_t>(std::max(0, pose.keyframe_id));
+    tracked->mean_flow_px = static_cast<float>(pose.tracking.mean_flow);
     tracked_publisher_.publish(TrackedFrameConstPtr(tracked));
     tracer_.published(tracked_publisher_, tracked.get(), stamp);
+  }
 
+  void publishStatus(const std_msgs::Header& header, const FramePose* pose) {
     auto status = boost::make_shared<TrackingStatus>();
-    status->header = frame->header;
-    status->state = TrackingStatus::INITIALIZING;
-    status->pose_published = publish_tf_;
-    status->keyframe_id = keyframe_id;
-    status->num_points = static_cast<std::uint32_t>(frame->sampled_edges.size() + frame->support_u.size());
-    status->num_edge_points = static_cast<std::uint32_t>(frame->sampled_edges.size());
-    status->time_ms = static_cast<float>((ros::WallTime::now() - start).toSec() * 1e3);
+    status->header = header;
     status->scale_is_arbitrary = true;
+    if (pose) {
+      status->state = pose->state == OdometryState::kTracking ? (pose->recovered ? TrackingStatus::RECOVERED : TrackingStatus::TRACKING)
+                      : pose->state == OdometryState::kLost ? TrackingStatus::LOST
+                                                            : TrackingStatus::INITIALIZING;
+      status->pose_published = pose->trusted && publish_tf_;
+      status->keyframe_id = static_cast<std::uint32_t>(std::max(0, pose->keyframe_id));
+      status->num_points = static_cast<std::uint32_t>(pose->tracking.points_in_view);
+      status->num_edge_points = static_cast<std::uint32_t>(pose->tracking.edge_residuals);
+      status->num_inliers = static_cast<std::uint32_t>(pose->tracking.photometric_inliers + pose->tracking.edge_inliers);
+      status->photometric_rmse = static_cast<float>(pose->tracking.photometric_rmse);
+      status->edge_rmse = static_cast<float>(pose->tracking.edge_rmse);
+      status->iterations = static_cast<std::uint32_t>(pose->tracking.iterations);
+      status->time_ms = static_cast<float>(pose->tracking_ms + pose->mapping_ms);
+    } else {
+      status->state = TrackingStatus::INITIALIZING;
+    }
     status_publisher_.publish(TrackingStatusConstPtr(status));
+  }
+
+  /// The keyframe window with the points whose depth is measured, for the Mapping nodelet.
+  void publishKeyframes(const ros::Time& stamp) {
+    auto map = boost::make_shared<KeyframeMap>();
+    map->header.stamp = stamp;
+    map->header.frame_id = "world";
+    for (const auto& keyframe : odometry_->keyframes()) {
+      MapKeyframe message;
+      message.id = static_cast<std::uint32_t>(keyframe->id);
+      const auto header = stamps_.find(keyframe->frame->index);
+      message.stamp = header != stamps_.end() ? header->second.stamp : ros::Time(keyframe->frame->time);
+      message.pose_world_camera = toPoseMsg(keyframe->T_world_cam);
+      for (const MapPoint& point : keyframe->points) {
+        if (!point.hasDepth()) continue;
+        message.point_u.push_back(point.u);
+        message.point_v.push_back(point.v);
+        message.point_inverse_depth.push_back(static_cast<float>(point.inverse_depth));
+        message.point_inverse_depth_variance.push_back(static_cast<float>(point.inverse_depth_variance));
+        message.point_class_mask.push_back(point.class_mask);
+        message.point_normal_x.push_back(point.normal.x());
+        message.point_normal_y.push_back(point.normal.y());
+      }
+      map->keyframes.push_back(std::move(message));
+    }
+    map->camera_info = cameraInfoMsg();
+    map_publisher_.publish(KeyframeMapConstPtr(map));
+    tracer_.published(map_publisher_, map.get(), stamp);
+  }
+
+  sensor_msgs::CameraInfo cameraInfoMsg() const {
+    sensor_msgs::CameraInfo info;
+    info.width = static_cast<std::uint32_t>(camera_.width);
+    info.height = static_cast<std::uint32_t>(camera_.height);
+    info.K = {camera_.fx, 0, camera_.cx, 0, camera_.fy, camera_.cy, 0, 0, 1};
+    return info;
   }
 
   /// Without a base_link -> camera transform on tf, announce the default one so rviz can show the camera.
@@ -135,10 +206,13 @@ class TrackingNodelet : public nodelet::Nodelet {
                               << " transform on tf: publishing the optical-rotation default as a static transform");
   }
 
+  // Parameters (read in onInit, constant afterwards).
   std::string odom_frame_ = "odom";
   std::string base_frame_ = "base_link";
   bool publish_tf_ = true;
   bool publish_default_camera_tf_ = true;
+  bool use_edges_ = true;  ///< false: photometric-only odometry (the ablation's "none")
+  OdometryOptions options_;
 
   std::unique_ptr<InputRejections> rejections_;
   std::unique_ptr<CameraExtrinsic> extrinsic_;
@@ -146,15 +220,16 @@ class TrackingNodelet : public nodelet::Nodelet {
   message_filters::Subscriber<SemanticEdgeFrame> frame_subscriber_;
   message_filters::Subscriber<NearestNeighborField> field_subscriber_;
   std::unique_ptr<Sync> sync_;
-  ros::Subscriber map_subscriber_;
-  ros::Publisher odometry_publisher_, status_publisher_, tracked_publisher_;
+  ros::Publisher odometry_publisher_, status_publisher_, tracked_publisher_, map_publisher_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   std::string announced_camera_frame_;
 
-  Eigen::Isometry3d T_world_cam_ = Eigen::Isometry3d::Identity();  // frame callback only
-  std::mutex map_mutex_;                                           // guards keyframe_map_
-  KeyframeMapConstPtr keyframe_map_;
+  // Frame callback only (the synchronizer calls it serially).
+  PinholeCamera camera_;
+  std::unique_ptr<Odometry> odometry_;
+  std::map<int, std_msgs::Header> stamps_;  ///< headers of recent frames by odometry index (late poses)
+  int frame_count_ = 0;
 };
 
 }  // namespace semantic_edge_vo

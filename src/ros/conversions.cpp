@@ -81,6 +81,25 @@ NearestNeighborFieldView fieldView(const NearestNeighborField& msg, std::string*
   return view;
 }
 
+std::shared_ptr<const OdometryFrame> odometryFrameFrom(const SemanticEdgeFrameConstPtr& frame,
+                                                       const NearestNeighborFieldConstPtr& field, int index,
+                                                       int pyramid_levels) {
+  auto result = std::make_shared<OdometryFrame>();
+  result->index = index;
+  result->time = frame->header.stamp.toSec();
+  const cv::Mat gray(static_cast<int>(frame->image.height), static_cast<int>(frame->image.width), CV_8UC1,
+                     const_cast<std::uint8_t*>(frame->image.data.data()), frame->image.step);
+  result->pyramid = std::make_shared<ImagePyramid>(gray, cameraFromInfo(frame->camera_info), pyramid_levels);
+  result->candidates = candidatesFrom(edgeSetView(*frame), frame->sampled_edges, frame->support_u, frame->support_v);
+  if (field) {
+    std::string error;
+    result->field = fieldView(*field, &error);
+    result->field_storage = std::shared_ptr<const void>(field.get(), [field](const void*) {});
+    result->has_field = true;
+  }
+  return result;
+}
+
 geometry_msgs::Pose toPoseMsg(const Eigen::Isometry3d& pose) { return tf2::toMsg(pose); }
 
 Eigen::Isometry3d fromPoseMsg(const geometry_msgs::Pose& pose) {

@@ -32,6 +32,24 @@ std::string loadFieldOptions(ParameterLoader* loader, FieldOptions* options) {
   return options->validate();
 }
 
+std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* options) {
+  TrackerOptions& tracker = options->tracker;
+  loader->load("tracker/levels", &tracker.levels, "levels");
+  loader->load("tracker/iterations_per_level", &tracker.iterations_per_level, "iterations");
+  loader->load("tracker/photometric_huber", &tracker.photometric_huber, "gray levels/px");
+  loader->load("tracker/edge_huber", &tracker.edge_huber, "px of each level");
+  loader->load("tracker/edge_weight", &tracker.edge_weight, "");
+  loader->load("tracker/accept_inlier_ratio", &tracker.accept_inlier_ratio, "");
+  loader->load("tracker/min_inlier_ratio", &tracker.min_inlier_ratio, "");
+  loader->load("initializer/min_parallax", &options->initializer.min_parallax, "px");
+  loader->load("initializer/max_frames", &options->initializer.max_frames, "frames");
+  loader->load("initializer/median_depth", &options->initializer.median_depth, "map units");
+  loader->load("keyframe_flow", &options->keyframe_flow, "px");
+  loader->load("keyframe_max_interval", &options->keyframe_max_interval, "frames");
+  loader->load("window_size", &options->window_size, "keyframes");
+  return options->validate();
+}
+
 std::string loadClassTable(const ros::NodeHandle& node, ClassTable* table) {
   XmlRpc::XmlRpcValue list;
   if (!node.getParam("classes", list)) {

@@ -10,6 +10,7 @@
 #include "semantic_edge_vo/camera.h"
 #include "semantic_edge_vo/edge_set.h"
 #include "semantic_edge_vo/nearest_neighbor_field.h"
+#include "semantic_edge_vo/odometry_frame.h"
 
 namespace semantic_edge_vo {
 
@@ -26,6 +27,13 @@ void moveFieldInto(NearestNeighborFieldData&& field, NearestNeighborField* msg);
 /// View of a field message (no copy; the message must outlive the view). Check with validate();
 /// an unknown kind leaves `error` non-empty.
 NearestNeighborFieldView fieldView(const NearestNeighborField& msg, std::string* error);
+
+/// The odometry's view of a frame and its field: the pyramid is computed from the frame's image,
+/// the field and the candidate points are read from the messages, which the result keeps alive.
+/// Check the field beforehand (fieldView + validate); `field` may be null (photometric only).
+std::shared_ptr<const OdometryFrame> odometryFrameFrom(const SemanticEdgeFrameConstPtr& frame,
+                                                       const NearestNeighborFieldConstPtr& field, int index,
+                                                       int pyramid_levels);
 
 geometry_msgs::Pose toPoseMsg(const Eigen::Isometry3d& pose);
 Eigen::Isometry3d fromPoseMsg(const geometry_msgs::Pose& pose);

@@ -4,6 +4,7 @@
 #include "semantic_edge_vo/canny_edge_detector.h"
 #include "semantic_edge_vo/class_table.h"
 #include "semantic_edge_vo/nearest_neighbor_field.h"
+#include "semantic_edge_vo/odometry.h"
 #include "semantic_edge_vo/point_sampler.h"
 #include "semantic_edge_vo/ros/parameter_loader.h"
 
@@ -14,6 +15,7 @@ namespace semantic_edge_vo {
 std::string loadCannyOptions(ParameterLoader* loader, CannyOptions* options);
 std::string loadPointSamplerOptions(ParameterLoader* loader, PointSamplerOptions* options);
 std::string loadFieldOptions(ParameterLoader* loader, FieldOptions* options);
+std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* options);
 /// Reads the class table from `classes` (a list of {name, id, rgb: [r, g, b]}); Cityscapes when absent.
 std::string loadClassTable(const ros::NodeHandle& node, ClassTable* table);
 
