@@ -8,6 +8,7 @@
 #include "semantic_edge_vo/keyframe.h"
 #include "semantic_edge_vo/tracker.h"
 #include "semantic_edge_vo/two_view_initializer.h"
+#include "semantic_edge_vo/window_optimizer.h"
 
 namespace semantic_edge_vo {
 
@@ -22,6 +23,8 @@ struct OdometryOptions {
   TrackerOptions tracker;
   InitializerOptions initializer;
   EpipolarSearchOptions epipolar;
+  WindowOptimizerOptions window_optimizer;
+  bool optimize_window = true;         ///< run the windowed optimisation at each new keyframe
   double keyframe_flow = 60.0;         ///< new keyframe when the keyframe points moved this much on average, px
   double keyframe_min_in_view = 0.6;   ///< ... or fewer of them are in view (fraction)
   int keyframe_max_interval = 8;      ///< ... or this many frames passed
@@ -68,7 +71,8 @@ class Odometry {
   FramePose track(const std::shared_ptr<const OdometryFrame>& frame);
   /// Refines the active keyframe's depths with a tracked frame.
   void refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf);
-  void makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, const Eigen::Isometry3d& T_world_cam);
+  /// Makes the frame a keyframe and returns its pose after the windowed optimisation.
+  Eigen::Isometry3d makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, const Eigen::Isometry3d& T_world_cam);
   void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);
   std::vector<Eigen::Isometry3d> guesses(const Keyframe& keyframe) const;
   void remember(const FramePose& pose);
@@ -76,6 +80,7 @@ class Odometry {
   OdometryOptions options_;
   PinholeCamera camera_;
   Tracker tracker_;
+  WindowOptimizer window_optimizer_;
   TwoViewInitializer initializer_;
   OdometryState state_ = OdometryState::kInitializing;
   bool recovering_ = false;

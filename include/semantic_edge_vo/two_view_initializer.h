@@ -10,7 +10,8 @@
 namespace semantic_edge_vo {
 
 struct InitializerOptions {
-  double min_parallax = 10.0;       ///< median displacement of the tracked points needed, px
+  double min_parallax = 0.032;      ///< median displacement of the tracked points needed, fraction of the image width
+                                    ///< (0.032: 40 px at 1241; shorter baselines give poor first depths)
   int max_frames = 12;              ///< give up (and restart from the newest frame) after this many frames
   int min_points = 80;              ///< tracked points and triangulated inliers needed
   double ransac_threshold = 0.75;   ///< essential-matrix RANSAC, px

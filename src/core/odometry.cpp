@@ -75,6 +75,7 @@ std::string OdometryOptions::validate() const {
   std::string error = tracker.validate();
   if (error.empty()) error = initializer.validate();
   if (error.empty()) error = epipolar.validate();
+  if (error.empty()) error = window_optimizer.validate();
   if (error.empty() && !(keyframe_flow > 0 && keyframe_min_in_view >= 0 && keyframe_min_in_view <= 1))
     error = "keyframe_flow must be > 0 px and keyframe_min_in_view in [0, 1]";
   if (error.empty() && (keyframe_max_interval < 1 || window_size < 1 || !(depth_neighbour_radius > 0)))
@@ -83,7 +84,11 @@ std::string OdometryOptions::validate() const {
 }
 
 Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera)
-    : options_(options), camera_(camera), tracker_(options.tracker), initializer_(options.initializer, camera) {}
+    : options_(options),
+      camera_(camera),
+      tracker_(options.tracker),
+      window_optimizer_(options.window_optimizer),
+      initializer_(options.initializer, camera) {}
 
 std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFrame>& frame) {
   if (state_ != OdometryState::kTracking) return initialize(frame);
@@ -240,7 +245,7 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
   ++frames_since_keyframe_;
   const bool few_in_view = pose.tracking.points_in_view < options_.keyframe_min_in_view * pose.tracking.points;
   if (pose.tracking.mean_flow > options_.keyframe_flow || few_in_view || frames_since_keyframe_ >= options_.keyframe_max_interval) {
-    makeKeyframe(frame, pose.T_world_cam);
+    pose.T_world_cam = makeKeyframe(frame, pose.T_world_cam);
     pose.keyframe = true;
   }
   pose.mapping_ms = elapsedMs(mapping_start);
@@ -258,7 +263,7 @@ void Odometry::refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d&
   tracker_.setKeyframe(active_);
 }
 
-void Odometry::makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, const Eigen::Isometry3d& T_world_cam) {
+Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, const Eigen::Isometry3d& T_world_cam) {
   auto keyframe = std::make_shared<Keyframe>();
   keyframe->id = next_keyframe_id_++;
   keyframe->T_world_cam = T_world_cam;
@@ -286,8 +291,10 @@ void Odometry::makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, c
 
   keyframes_.push_back(keyframe);
   while (static_cast<int>(keyframes_.size()) > options_.window_size) keyframes_.pop_front();
+  if (options_.optimize_window) window_optimizer_.optimize(keyframes_);
   setActiveKeyframe(keyframe);
   frames_since_keyframe_ = 0;
+  return keyframe->T_world_cam;
 }
 
 void Odometry::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {

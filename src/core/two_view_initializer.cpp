@@ -21,7 +21,7 @@ double median(std::vector<double> values) {
 
 std::string InitializerOptions::validate() const {
   std::ostringstream error;
-  if (!(min_parallax > 0)) error << "min_parallax must be > 0 px";
+  if (!(min_parallax > 0 && min_parallax < 1)) error << "min_parallax must be in (0, 1) (a fraction of the image width)";
   else if (max_frames < 1 || min_points < 8) error << "need max_frames >= 1 and min_points >= 8";
   else if (!(ransac_threshold > 0 && min_triangulation_angle >= 0 && median_depth > 0))
     error << "ransac_threshold and median_depth must be > 0, min_triangulation_angle >= 0";
@@ -68,7 +68,7 @@ TwoViewInitializer::Status TwoViewInitializer::add(const cv::Mat& gray) {
   std::vector<double> flow;
   for (std::size_t i = 0; i < kept; ++i) flow.push_back(cv::norm(current_[i] - first_[i]));
   const bool last_chance = frames_ >= options_.max_frames;
-  if (median(flow) < options_.min_parallax && !last_chance) return Status::kNeedMoreFrames;
+  if (median(flow) < options_.min_parallax * camera_.width && !last_chance) return Status::kNeedMoreFrames;
   if (solve()) return Status::kReady;
   return last_chance ? Status::kFailed : Status::kNeedMoreFrames;
 }

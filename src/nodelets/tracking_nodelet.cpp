@@ -84,7 +84,9 @@ class TrackingNodelet : public nodelet::Nodelet {
     const auto odometry_frame =
         odometryFrameFrom(frame, use_edges_ ? field : NearestNeighborFieldConstPtr(), frame_count_++, options_.tracker.levels);
     const std::vector<FramePose> poses = odometry_->process(odometry_frame);
-    if (poses.empty()) publishStatus(frame->header, nullptr);  // waiting for initialisation
+    // A frame without a pose yet (it waits for the initialisation) still gets its status now.
+    if (std::none_of(poses.begin(), poses.end(), [&](const FramePose& p) { return p.index == odometry_frame->index; }))
+      publishStatus(frame->header, nullptr);
     bool new_keyframe = false;
     for (const FramePose& pose : poses) {
       publishPose(pose);

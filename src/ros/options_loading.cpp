@@ -41,12 +41,13 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("tracker/edge_weight", &tracker.edge_weight, "");
   loader->load("tracker/accept_inlier_ratio", &tracker.accept_inlier_ratio, "");
   loader->load("tracker/min_inlier_ratio", &tracker.min_inlier_ratio, "");
-  loader->load("initializer/min_parallax", &options->initializer.min_parallax, "px");
+  loader->load("initializer/min_parallax", &options->initializer.min_parallax, "image widths");
   loader->load("initializer/max_frames", &options->initializer.max_frames, "frames");
   loader->load("initializer/median_depth", &options->initializer.median_depth, "map units");
   loader->load("keyframe_flow", &options->keyframe_flow, "px");
   loader->load("keyframe_max_interval", &options->keyframe_max_interval, "frames");
   loader->load("window_size", &options->window_size, "keyframes");
+  loader->load("optimize_window", &options->optimize_window);
   return options->validate();
 }
 

@@ -1,0 +1,45 @@
+#pragma once
+#include <deque>
+#include <memory>
+#include <string>
+
+#include "semantic_edge_vo/keyframe.h"
+
+namespace semantic_edge_vo {
+
+struct WindowOptimizerOptions {
+  int keyframes = 5;               ///< newest keyframes optimised together (the oldest of them is held fixed)
+  int max_iterations = 5;          ///< Levenberg-Marquardt iterations per solve
+  int point_stride = 2;            ///< every n-th point of each host keyframe takes part
+  double photometric_sigma = 4.0;  ///< gray levels / px (gradient magnitude)
+  double photometric_huber = 9.0;  ///< gray levels / px
+  double edge_sigma = 1.0;         ///< px
+  double edge_huber = 1.5;         ///< px
+  double edge_weight = 0.5;        ///< mapping weighs edges less than tracking (paper III-C)
+  double edge_radius = 3.0;        ///< an edge point is associated with an edge of a shared class this near, px
+
+  std::string validate() const;
+};
+
+struct WindowOptimizerResult {
+  int keyframes = 0, points = 0, photometric_residuals = 0, edge_residuals = 0;
+  double initial_cost = 0.0, final_cost = 0.0;
+  bool solved = false;
+};
+
+/// Windowed optimisation of keyframe poses and point inverse depths with Ceres (paper III-C):
+/// photometric residuals (gradient magnitude, Huber) of every point in every other keyframe of the
+/// window, point-to-tangent residuals of edge points against their nearest same-class edge there
+/// (smaller weight than in tracking), and a prior on each inverse depth at its filtered estimate and
+/// sigma. The oldest keyframe of the window is held fixed (gauge).
+class WindowOptimizer {
+ public:
+  explicit WindowOptimizer(const WindowOptimizerOptions& options) : options_(options) {}
+  /// Optimises the newest keyframes of `window` in place.
+  WindowOptimizerResult optimize(const std::deque<std::shared_ptr<Keyframe>>& window) const;
+
+ private:
+  WindowOptimizerOptions options_;
+};
+
+}  // namespace semantic_edge_vo

@@ -1,0 +1,156 @@
+#include "semantic_edge_vo/window_optimizer.h"
+
+#include <array>
+#include <sstream>
+
+#include "semantic_edge_vo/factors/edge_factor.h"
+#include "semantic_edge_vo/factors/inverse_depth_prior.h"
+#include "semantic_edge_vo/factors/photometric_factor.h"
+
+namespace semantic_edge_vo {
+namespace {
+
+struct PoseBlock {
+  std::array<double, 4> q;  ///< x, y, z, w
+  std::array<double, 3> t;
+};
+
+PoseBlock toBlock(const Eigen::Isometry3d& T) {
+  const Eigen::Quaterniond q(T.linear());
+  return {{q.x(), q.y(), q.z(), q.w()}, {T.translation().x(), T.translation().y(), T.translation().z()}};
+}
+
+Eigen::Isometry3d fromBlock(const PoseBlock& block) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(block.q[3], block.q[0], block.q[1], block.q[2]).normalized().toRotationMatrix();
+  T.translation() = Eigen::Vector3d(block.t[0], block.t[1], block.t[2]);
+  return T;
+}
+
+/// The nearest edge of a class the point has (any edge for ANNF/ONNF fields), within `radius`.
+bool associate(const NearestNeighborFieldView& field, std::uint32_t class_mask, const Eigen::Vector2d& pixel, double radius,
+               FieldMatch* best) {
+  bool found = false;
+  FieldMatch match;
+  for (int layer = 0; layer < field.num_layers; ++layer) {
+    if (field.kind == FieldKind::kSnnf && !((class_mask >> layer) & 1u)) continue;
+    if (field.nearest(0, layer, static_cast<float>(pixel.x()), static_cast<float>(pixel.y()), &match) &&
+        match.distance <= radius && (!found || match.distance < best->distance)) {
+      *best = match;
+      found = true;
+    }
+  }
+  return found;
+}
+
+}  // namespace
+
+std::string WindowOptimizerOptions::validate() const {
+  std::ostringstream error;
+  if (keyframes < 2 || max_iterations < 1 || point_stride < 1) error << "need keyframes >= 2, max_iterations >= 1, point_stride >= 1";
+  else if (!(photometric_sigma > 0 && photometric_huber > 0 && edge_sigma > 0 && edge_huber > 0 && edge_weight >= 0 && edge_radius > 0))
+    error << "sigmas, Huber thresholds and the edge radius must be > 0, edge_weight >= 0";
+  return error.str();
+}
+
+WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr<Keyframe>>& window) const {
+  WindowOptimizerResult result;
+  const std::size_t count = std::min(window.size(), static_cast<std::size_t>(options_.keyframes));
+  if (count < 2) return result;
+  const std::size_t first = window.size() - count;
+  result.keyframes = static_cast<int>(count);
+
+  std::vector<PoseBlock> poses;
+  std::vector<std::unique_ptr<ceres::Grid2D<float, 1>>> grids;
+  std::vector<std::unique_ptr<factors::Interpolator>> interpolators;
+  for (std::size_t k = first; k < window.size(); ++k) {
+    poses.push_back(toBlock(window[k]->T_world_cam));
+    const cv::Mat& gradient = window[k]->frame->pyramid->level(0).gradient;
+    CV_Assert(gradient.isContinuous());
+    grids.push_back(std::make_unique<ceres::Grid2D<float, 1>>(gradient.ptr<float>(), 0, gradient.rows, 0, gradient.cols));
+    interpolators.push_back(std::make_unique<factors::Interpolator>(*grids.back()));
+  }
+  const PinholeCamera& camera = window[first]->frame->pyramid->level(0).camera;
+
+  ceres::Problem problem;
+  for (PoseBlock& pose : poses) {
+    problem.AddParameterBlock(pose.q.data(), 4, new ceres::EigenQuaternionManifold());
+    problem.AddParameterBlock(pose.t.data(), 3);
+  }
+  problem.SetParameterBlockConstant(poses[0].q.data());
+  problem.SetParameterBlockConstant(poses[0].t.data());
+
+  // Inverse depths live in a vector parallel to (host, point index) so that they are written back.
+  struct PointRef {
+    std::size_t host;
+    std::size_t index;
+  };
+  std::vector<PointRef> refs;
+  std::vector<double> inverse_depths;
+  for (std::size_t h = 0; h < count; ++h)
+    for (std::size_t i = 0; i < window[first + h]->points.size(); i += static_cast<std::size_t>(options_.point_stride))
+      if (window[first + h]->points[i].hasDepth()) refs.push_back({h, i});
+  inverse_depths.resize(refs.size());
+
+  const double photometric_loss = options_.photometric_huber / options_.photometric_sigma;
+  const double edge_loss = options_.edge_huber / options_.edge_sigma;
+  for (std::size_t r = 0; r < refs.size(); ++r) {
+    const Keyframe& host = *window[first + refs[r].host];
+    const MapPoint& point = host.points[refs[r].index];
+    inverse_depths[r] = point.inverse_depth;
+    const Eigen::Vector3d ray = camera.backProject(point.u, point.v, 1.0);
+    const double host_value = sampleBilinear(host.frame->pyramid->level(0).gradient, point.u, point.v);
+    int observed = 0;
+    for (std::size_t t = 0; t < count; ++t) {
+      if (t == refs[r].host) continue;
+      const Keyframe& target = *window[first + t];
+      const Eigen::Vector3d p = target.T_world_cam.inverse() * host.T_world_cam * camera.backProject(point.u, point.v, 1.0 / point.inverse_depth);
+      if (p.z() <= 1e-3) continue;
+      const Eigen::Vector2d pixel = camera.project(p);
+      if (!camera.contains(pixel.x(), pixel.y(), 4.0)) continue;
+      PoseBlock& h = poses[refs[r].host];
+      PoseBlock& g = poses[t];
+      problem.AddResidualBlock(factors::PhotometricFactor::Create(ray, host_value, interpolators[t].get(), camera.fx, camera.fy,
+                                                                  camera.cx, camera.cy, options_.photometric_sigma),
+                               new ceres::HuberLoss(photometric_loss), h.q.data(), h.t.data(), g.q.data(), g.t.data(),
+                               &inverse_depths[r]);
+      ++result.photometric_residuals;
+      ++observed;
+      FieldMatch match;
+      if (point.isEdge() && options_.edge_weight > 0.0 && target.frame->has_field &&
+          associate(target.frame->field, point.class_mask, pixel, options_.edge_radius, &match)) {
+        problem.AddResidualBlock(
+            factors::EdgeFactor::Create(ray, Eigen::Vector2d(match.u, match.v), Eigen::Vector2d(match.normal_x, match.normal_y),
+                                        camera.fx, camera.fy, camera.cx, camera.cy, options_.edge_sigma),
+            new ceres::ScaledLoss(new ceres::HuberLoss(edge_loss), options_.edge_weight, ceres::TAKE_OWNERSHIP), h.q.data(),
+            h.t.data(), g.q.data(), g.t.data(), &inverse_depths[r]);
+        ++result.edge_residuals;
+      }
+    }
+    if (observed == 0) continue;
+    problem.AddResidualBlock(factors::InverseDepthPrior::Create(point.inverse_depth, std::sqrt(point.inverse_depth_variance)),
+                             nullptr, &inverse_depths[r]);
+    problem.SetParameterLowerBound(&inverse_depths[r], 0, 1e-4);
+    ++result.points;
+  }
+  if (result.photometric_residuals == 0) return result;
+
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_SCHUR;
+  solver.max_num_iterations = options_.max_iterations;
+  solver.num_threads = 1;  // deterministic
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  result.initial_cost = summary.initial_cost;
+  result.final_cost = summary.final_cost;
+  result.solved = summary.IsSolutionUsable() && summary.final_cost <= summary.initial_cost;
+  if (!result.solved) return result;
+
+  for (std::size_t k = 1; k < count; ++k) window[first + k]->T_world_cam = fromBlock(poses[k]);
+  for (std::size_t r = 0; r < refs.size(); ++r)
+    if (problem.HasParameterBlock(&inverse_depths[r])) window[first + refs[r].host]->points[refs[r].index].inverse_depth = inverse_depths[r];
+  return result;
+}
+
+}  // namespace semantic_edge_vo
