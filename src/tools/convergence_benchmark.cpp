@@ -55,10 +55,7 @@ bool parse(int argc, char** argv, Arguments* args, std::string* error) {
       else if (flag == "--seed") args->seed = std::stoull(value);
       else if (flag == "--reference-edges") args->reference_edges = std::stoi(value);
       else if (flag == "--truncation") args->truncation = std::stof(value);
-      else if (flag == "--label-confusion") args->noise.label_confusion = std::stod(value);
-      else if (flag == "--edge-blur") args->noise.edge_blur = std::stod(value);
-      else if (flag == "--missed-edges") args->noise.missed_edges = std::stod(value);
-      else if (flag == "--spurious-edges") args->noise.spurious_edges = std::stod(value);
+      else if (synthetic::parseNoiseFlag(flag, value, &args->noise)) continue;
       else {
         *error = "unknown flag " + flag;
         return false;

@@ -64,10 +64,7 @@ bool parse(int argc, char** argv, Arguments* args, std::string* error) {
       else if (flag == "--frame-gap") args->frame_gap = std::stoi(value);
       else if (flag == "--radius") args->repeatability.radius = std::stod(value);
       else if (flag == "--seed") args->repeatability.seed = std::stoull(value);
-      else if (flag == "--label-confusion") args->noise.label_confusion = std::stod(value);
-      else if (flag == "--edge-blur") args->noise.edge_blur = std::stod(value);
-      else if (flag == "--missed-edges") args->noise.missed_edges = std::stod(value);
-      else if (flag == "--spurious-edges") args->noise.spurious_edges = std::stod(value);
+      else if (synthetic::parseNoiseFlag(flag, value, &args->noise)) continue;
       else {
         *error = "unknown flag " + flag;
         return false;

@@ -24,6 +24,10 @@ struct NetworkNoiseOptions {
   std::string validate() const;
 };
 
+/// Reads a command-line noise flag (--label-confusion, --edge-blur, --missed-edges, --spurious-edges)
+/// into `options`; false when `flag` is not one of them. Throws std::invalid_argument on a bad value.
+bool parseNoiseFlag(const std::string& flag, const std::string& value, NetworkNoiseOptions* options);
+
 /// Applies the noise models in place, deterministically for the seed.
 void applyNetworkNoise(const NetworkNoiseOptions& options, std::uint64_t seed, SemanticNetworkOutput* output);
 

@@ -128,6 +128,16 @@ std::string NetworkNoiseOptions::validate() const {
   return error.str();
 }
 
+bool parseNoiseFlag(const std::string& flag, const std::string& value, NetworkNoiseOptions* options) {
+  double* target = flag == "--label-confusion" ? &options->label_confusion
+                   : flag == "--edge-blur"     ? &options->edge_blur
+                   : flag == "--missed-edges"  ? &options->missed_edges
+                   : flag == "--spurious-edges" ? &options->spurious_edges
+                                                : nullptr;
+  if (target) *target = std::stod(value);
+  return target != nullptr;
+}
+
 void applyNetworkNoise(const NetworkNoiseOptions& options, std::uint64_t seed, SemanticNetworkOutput* output) {
   if (options.label_confusion > 0.0) confuseLabels(options.label_confusion, seed, output);
   if (options.edge_blur > 0.0) blurEdges(options.edge_blur, output);
