@@ -1,6 +1,7 @@
 // Mapping: KeyframeMap and TrackedFrame from Tracking -> the semantic edge map (PointCloud2, voxel
 // filtered and bounded: keyframes leaving the window are committed to it) and nav_msgs/Path.
 // Work happens in an owned thread behind a bounded queue; callbacks only enqueue.
+#include <array>
 #include <condition_variable>
 #include <deque>
 #include <thread>
@@ -41,7 +42,8 @@ class MappingNodelet : public nodelet::Nodelet {
   };
   struct MapPointOut {
     Eigen::Vector3f position;  ///< odom frame
-    std::uint32_t label;
+    std::uint32_t label;       ///< class index in the intake's class table
+    std::array<std::uint8_t, 3> rgb;
   };
 
   void onInit() override {
@@ -123,14 +125,22 @@ class MappingNodelet : public nodelet::Nodelet {
   }
 
   /// Points of one keyframe in odom, edge points only (supportive points carry no class).
-  std::vector<MapPointOut> pointsOf(const MapKeyframe& keyframe, const PinholeCamera& camera, const Eigen::Isometry3d& T_base_cam) const {
+  /// Colour of a class of the intake's table: from the class table of the same name, white if none.
+  std::array<std::uint8_t, 3> colourOf(const std::vector<std::string>& names, std::uint32_t label) const {
+    const int index = label < names.size() ? classes_.indexOf(names[label]) : -1;
+    return index >= 0 ? classes_[index].rgb : std::array<std::uint8_t, 3>{{255, 255, 255}};
+  }
+
+  std::vector<MapPointOut> pointsOf(const MapKeyframe& keyframe, const PinholeCamera& camera, const Eigen::Isometry3d& T_base_cam,
+                                    const std::vector<std::string>& class_names) const {
     std::vector<MapPointOut> points;
     const Eigen::Isometry3d T_odom_cam = T_base_cam * fromPoseMsg(keyframe.pose_world_camera);
     for (std::size_t i = 0; i < keyframe.point_u.size(); ++i) {
       const std::uint32_t mask = keyframe.point_class_mask[i];
       if (!mask || !(keyframe.point_inverse_depth[i] > 0.0f)) continue;
       const Eigen::Vector3d p = camera.backProject(keyframe.point_u[i], keyframe.point_v[i], 1.0 / keyframe.point_inverse_depth[i]);
-      points.push_back({(T_odom_cam * p).cast<float>(), static_cast<std::uint32_t>(__builtin_ctz(mask))});
+      const auto label = static_cast<std::uint32_t>(__builtin_ctz(mask));
+      points.push_back({(T_odom_cam * p).cast<float>(), label, colourOf(class_names, label)});
     }
     return points;
   }
@@ -143,15 +153,16 @@ class MappingNodelet : public nodelet::Nodelet {
     for (const MapKeyframe& keyframe : map.keyframes) in_window.insert(keyframe.id);
     for (const MapKeyframe& keyframe : last_window_)
       if (!in_window.count(keyframe.id))
-        for (const MapPointOut& point : pointsOf(keyframe, last_camera_, T_base_cam)) commit(point);
+        for (const MapPointOut& point : pointsOf(keyframe, last_camera_, T_base_cam, last_class_names_)) commit(point);
     last_window_ = map.keyframes;
     last_camera_ = camera;
+    last_class_names_ = map.class_names;
 
     std::vector<MapPointOut> points;
     points.reserve(voxels_.size());
     for (const auto& entry : voxels_) points.push_back(entry.second);
     for (const MapKeyframe& keyframe : map.keyframes)
-      for (const MapPointOut& point : pointsOf(keyframe, camera, T_base_cam)) points.push_back(point);
+      for (const MapPointOut& point : pointsOf(keyframe, camera, T_base_cam, map.class_names)) points.push_back(point);
     publishCloud(points, map.header.stamp);
   }
 
@@ -184,10 +195,9 @@ class MappingNodelet : public nodelet::Nodelet {
       x[1] = point.position.y();
       x[2] = point.position.z();
       *label = point.label;
-      const auto& colour = classes_[point.label < static_cast<std::uint32_t>(classes_.size()) ? static_cast<int>(point.label) : 0].rgb;
-      rgb[0] = colour[2];
-      rgb[1] = colour[1];
-      rgb[2] = colour[0];
+      rgb[0] = point.rgb[2];
+      rgb[1] = point.rgb[1];
+      rgb[2] = point.rgb[0];
       rgb[3] = 255;
       ++x, ++label, ++rgb;
     }
@@ -220,6 +230,7 @@ class MappingNodelet : public nodelet::Nodelet {
   nav_msgs::Path path_;
   std::vector<MapKeyframe> last_window_;
   PinholeCamera last_camera_;
+  std::vector<std::string> last_class_names_;
   std::unordered_map<std::uint64_t, MapPointOut> voxels_;
   std::deque<std::uint64_t> voxel_order_;
 };

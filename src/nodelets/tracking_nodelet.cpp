@@ -81,6 +81,7 @@ class TrackingNodelet : public nodelet::Nodelet {
       frame_count_ = 0;
     }
     stamps_[frame_count_] = frame->header;
+    class_names_ = frame->class_names;
     const auto odometry_frame =
         odometryFrameFrom(frame, use_edges_ ? field : NearestNeighborFieldConstPtr(), frame_count_++, options_.tracker.levels);
     const std::vector<FramePose> poses = odometry_->process(odometry_frame);
@@ -184,6 +185,7 @@ class TrackingNodelet : public nodelet::Nodelet {
       map->keyframes.push_back(std::move(message));
     }
     map->camera_info = cameraInfoMsg();
+    map->class_names = class_names_;
     map_publisher_.publish(KeyframeMapConstPtr(map));
     tracer_.published(map_publisher_, map.get(), stamp);
   }
@@ -232,6 +234,7 @@ class TrackingNodelet : public nodelet::Nodelet {
   std::unique_ptr<Odometry> odometry_;
   std::map<int, std_msgs::Header> stamps_;  ///< headers of recent frames by odometry index (late poses)
   int frame_count_ = 0;
+  std::vector<std::string> class_names_;  ///< of the latest frame (the intake's class table)
 };
 
 }  // namespace semantic_edge_vo
