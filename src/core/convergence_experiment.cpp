@@ -1,3 +1,4 @@
+#include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/convergence_experiment.h"
 
 #include "semantic_edge_vo/json_text.h"
@@ -10,12 +11,6 @@
 namespace semantic_edge_vo {
 namespace {
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 Eigen::Vector3d randomDirection(std::mt19937_64* rng) {
   std::normal_distribution<double> gauss(0.0, 1.0);

@@ -1,3 +1,4 @@
+#include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/edge_registration.h"
 
 #include <cmath>
@@ -6,10 +7,6 @@
 namespace semantic_edge_vo {
 namespace {
 
-double huberCost(double r, double k) {
-  const double a = std::abs(r);
-  return a <= k ? 0.5 * r * r : k * (a - 0.5 * k);
-}
 
 }  // namespace
 

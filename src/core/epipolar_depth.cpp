@@ -1,3 +1,4 @@
+#include "semantic_edge_vo/residual_pattern.h"
 #include "semantic_edge_vo/epipolar_depth.h"
 
 #include <cmath>
@@ -7,9 +8,6 @@
 
 namespace semantic_edge_vo {
 namespace {
-
-constexpr int kPattern = 8;
-constexpr int kPatternOffsets[kPattern][2] = {{0, -2}, {-1, -1}, {1, -1}, {-2, 0}, {0, 0}, {2, 0}, {-1, 1}, {0, 2}};
 
 bool hasSharedClassEdge(const NearestNeighborFieldView& field, std::uint32_t class_mask, float x, float y, double radius) {
   FieldMatch match;

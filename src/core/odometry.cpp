@@ -1,3 +1,4 @@
+#include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/odometry.h"
 
 #include <algorithm>
@@ -18,11 +19,6 @@ cv::Mat gray8(const OdometryFrame& frame) {
   return gray;
 }
 
-double median(std::vector<double> values) {
-  auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 
 /// A measured inverse depth at a pixel of the keyframe that receives it.

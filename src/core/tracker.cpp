@@ -1,3 +1,5 @@
+#include "semantic_edge_vo/robust_statistics.h"
+#include "semantic_edge_vo/residual_pattern.h"
 #include "semantic_edge_vo/tracker.h"
 
 #include <cmath>
@@ -9,14 +11,6 @@
 namespace semantic_edge_vo {
 namespace {
 
-/// DSO's 8-pixel residual pattern, offsets in pixels of each level.
-constexpr int kPattern = 8;
-constexpr int kPatternOffsets[kPattern][2] = {{0, -2}, {-1, -1}, {1, -1}, {-2, 0}, {0, 0}, {2, 0}, {-1, 1}, {0, 2}};
-
-double huberCost(double r, double k) {
-  const double a = std::abs(r);
-  return a <= k ? 0.5 * r * r : k * (a - 0.5 * k);
-}
 
 /// Coarse levels use every n-th point: they only need to find the basin.
 int pointStride(int level) { return level >= 2 ? 1 << (level - 1) : 1; }

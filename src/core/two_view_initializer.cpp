@@ -1,3 +1,4 @@
+#include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/two_view_initializer.h"
 
 #include <algorithm>
@@ -11,11 +12,6 @@
 namespace semantic_edge_vo {
 namespace {
 
-double median(std::vector<double> values) {
-  auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 }  // namespace
 

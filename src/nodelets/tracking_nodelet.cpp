@@ -184,18 +184,10 @@ class TrackingNodelet : public nodelet::Nodelet {
       }
       map->keyframes.push_back(std::move(message));
     }
-    map->camera_info = cameraInfoMsg();
+    map->camera_info = cameraInfoOf(camera_, "");
     map->class_names = class_names_;
     map_publisher_.publish(KeyframeMapConstPtr(map));
     tracer_.published(map_publisher_, map.get(), stamp);
-  }
-
-  sensor_msgs::CameraInfo cameraInfoMsg() const {
-    sensor_msgs::CameraInfo info;
-    info.width = static_cast<std::uint32_t>(camera_.width);
-    info.height = static_cast<std::uint32_t>(camera_.height);
-    info.K = {camera_.fx, 0, camera_.cx, 0, camera_.fy, camera_.cy, 0, 0, 1};
-    return info;
   }
 
   /// Without a base_link -> camera transform on tf, announce the default one so rviz can show the camera.

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/semantic_map_files.h"
 #include "semantic_edge_vo/trajectory_io.h"
 

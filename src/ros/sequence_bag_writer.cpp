@@ -21,19 +21,6 @@ const char* imageEncoding(const cv::Mat& image) {
 
 }  // namespace
 
-sensor_msgs::CameraInfo cameraInfoOf(const PinholeCamera& camera, const std::string& frame_id) {
-  sensor_msgs::CameraInfo info;
-  info.header.frame_id = frame_id;
-  info.width = static_cast<std::uint32_t>(camera.width);
-  info.height = static_cast<std::uint32_t>(camera.height);
-  info.distortion_model = "plumb_bob";
-  info.D.assign(5, 0.0);
-  info.K = {camera.fx, 0.0, camera.cx, 0.0, camera.fy, camera.cy, 0.0, 0.0, 1.0};
-  info.R = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
-  info.P = {camera.fx, 0.0, camera.cx, 0.0, 0.0, camera.fy, camera.cy, 0.0, 0.0, 0.0, 1.0, 0.0};
-  return info;
-}
-
 SequenceBagWriter::SequenceBagWriter(const std::string& path, const sensor_msgs::CameraInfo& info, double base_time)
     : info_(info), base_time_(base_time) {
   try {

@@ -19,6 +19,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/class_table.h"
 #include "semantic_edge_vo/point_sampler.h"
 #include "semantic_edge_vo/segmenter.h"
@@ -37,10 +38,6 @@ double threadCpuMs() {
   return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
 }
 
-double median(std::vector<double> values) {
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
-  return values[values.size() / 2];
-}
 
 /// Median wall time of `work`, ms.
 double medianMs(int runs, const std::function<void()>& work) {

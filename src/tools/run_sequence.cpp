@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/class_table.h"
 #include "semantic_edge_vo/odometry.h"
 #include "semantic_edge_vo/progress_bar.h"
@@ -46,11 +47,6 @@ std::string parse(int argc, char** argv, Arguments* args) {
   return {};
 }
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
-  return values[values.size() / 2];
-}
 
 }  // namespace
 

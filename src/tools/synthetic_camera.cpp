@@ -11,7 +11,6 @@
 #include <ros/ros.h>
 
 #include "semantic_edge_vo/ros/conversions.h"
-#include "semantic_edge_vo/ros/sequence_bag_writer.h"
 #include "semantic_edge_vo/synthetic/sequence_formats.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
 

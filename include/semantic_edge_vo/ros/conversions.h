@@ -14,6 +14,9 @@
 
 namespace semantic_edge_vo {
 
+/// A complete CameraInfo of a rectified pinhole camera (K, P, R identity, D zero, plumb_bob).
+sensor_msgs::CameraInfo cameraInfoOf(const PinholeCamera& camera, const std::string& frame_id);
+
 /// Intrinsics of a rectified image from its CameraInfo (K). Check the result with validate().
 PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info);
 

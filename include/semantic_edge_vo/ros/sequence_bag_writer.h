@@ -73,7 +73,4 @@ class SequenceBagWriter {
   std::string error_;
 };
 
-/// A complete CameraInfo of a rectified pinhole camera (K, P, R identity, D zero, plumb_bob).
-sensor_msgs::CameraInfo cameraInfoOf(const PinholeCamera& camera, const std::string& frame_id);
-
 }  // namespace semantic_edge_vo

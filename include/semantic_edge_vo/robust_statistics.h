@@ -1,0 +1,22 @@
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace semantic_edge_vo {
+
+/// Huber cost of a residual r with threshold k: r^2 / 2 inside, linear outside.
+inline double huberCost(double r, double k) {
+  const double a = std::abs(r);
+  return a <= k ? 0.5 * r * r : k * (a - 0.5 * k);
+}
+
+/// Median (the upper one for an even count) of the values, 0 for none. Takes a copy to reorder.
+inline double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+}  // namespace semantic_edge_vo
