@@ -17,9 +17,9 @@ namespace semantic_edge_vo {
 /// semantic_edges reads per-class edges from `edge_bitmask/`.
 class SequenceInput {
  public:
-  /// @param[in] segmenter_model empty, or a model for the Segmenter (fused intake)
+  /// @param[in] segmenter options of the in-process Segmenter (fused intake); no model_path: none
   /// @return "" or what is wrong, naming the file or folder
-  std::string open(const std::string& directory, IntakeMode mode, const std::string& segmenter_model, int classes);
+  std::string open(const std::string& directory, IntakeMode mode, const SegmenterOptions& segmenter, int classes);
 
   std::size_t size() const { return sequence_.size(); }
   double time(std::size_t frame) const { return sequence_.times[frame]; }

@@ -17,8 +17,7 @@ struct Segmenter::Network {
 std::string SegmenterOptions::validate() const {
   std::ostringstream error;
   static const char* kFormats[] = {"torch", "onnx", "caffe", "tensorflow", "darknet"};
-  if (model_path.empty()) error << "model_path is empty";
-  else if (std::find(std::begin(kFormats), std::end(kFormats), format) == std::end(kFormats))
+  if (std::find(std::begin(kFormats), std::end(kFormats), format) == std::end(kFormats))
     error << "format must be torch, onnx, caffe, tensorflow or darknet (got '" << format << "')";
   else if (input_width < 8 || input_height < 8) error << "input size must be at least 8x8 (got " << input_width << "x" << input_height << ")";
   else if (!(scale > 0.0)) error << "scale must be > 0 (got " << scale << ")";
@@ -31,6 +30,7 @@ std::string SegmenterOptions::validate() const {
 Segmenter::Segmenter(const SegmenterOptions& options, int classes)
     : options_(options), classes_(classes), network_(std::make_unique<Network>()) {
   error_ = options_.validate();
+  if (error_.empty() && options_.model_path.empty()) error_ = "model_path is empty (set the network file)";
   if (error_.empty() && !std::filesystem::is_regular_file(options_.model_path))
     error_ = "model file '" + options_.model_path + "' does not exist";
   if (!error_.empty()) return;

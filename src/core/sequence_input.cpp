@@ -6,7 +6,7 @@
 
 namespace semantic_edge_vo {
 
-std::string SequenceInput::open(const std::string& directory, IntakeMode mode, const std::string& segmenter_model,
+std::string SequenceInput::open(const std::string& directory, IntakeMode mode, const SegmenterOptions& segmenter,
                                 int classes) {
   mode_ = mode;
   classes_ = classes;
@@ -22,13 +22,11 @@ std::string SequenceInput::open(const std::string& directory, IntakeMode mode, c
     return std::filesystem::is_directory(directory + "/" + folder) ? std::string()
                                                                    : directory + "/" + folder + "/: missing (needed by this intake mode)";
   };
-  if (mode == IntakeMode::kFused && segmenter_model.empty()) return need("class_probability");
+  if (mode == IntakeMode::kFused && segmenter.model_path.empty()) return need("class_probability");
   if (mode == IntakeMode::kSemanticEdges) return need("edge_bitmask");
   if (mode == IntakeMode::kFused) {
-    SegmenterOptions options;
-    options.model_path = segmenter_model;
-    segmenter_ = std::make_unique<Segmenter>(options, classes);
-    if (!segmenter_->ok()) return segmenter_model + ": " + segmenter_->error();
+    segmenter_ = std::make_unique<Segmenter>(segmenter, classes);
+    if (!segmenter_->ok()) return segmenter.model_path + ": " + segmenter_->error();
   }
   return {};
 }

@@ -22,9 +22,10 @@
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/frame_pairing.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
-#include "semantic_edge_vo/ros/intake_options_loading.h"
+#include "semantic_edge_vo/intake_options_loading.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
-#include "semantic_edge_vo/ros/options_loading.h"
+#include "semantic_edge_vo/options_loading.h"
+#include "semantic_edge_vo/ros/ros_parameter_source.h"
 
 namespace semantic_edge_vo {
 namespace enc = sensor_msgs::image_encodings;
@@ -35,7 +36,8 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     ros::NodeHandle& node = getNodeHandle();
     ros::NodeHandle& private_node = getPrivateNodeHandle();
     rejections_ = std::make_unique<InputRejections>(getName());
-    ParameterLoader loader(private_node);
+    const RosParameterSource parameters(private_node);
+    ParameterLoader loader(parameters);
     int queue_size = 5;
     loader.load("queue_size", &queue_size, "messages");
     std::string transport = "raw", class_format = "probabilities", edge_source = "canny", on_missing = "canny";
@@ -49,12 +51,13 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
       loader.load("class_wait", &class_wait, "s");
       loader.load("on_missing_classes", &on_missing, "(drop | canny)");
       loader.load("max_pending", &max_pending, "frames");
-      error = loadClassTable(private_node, &classes_);
+      error = loadClassTable(&loader, &classes_);
     } else {
       classes_ = ClassTable::singleEdgeClass();
     }
     if (error.empty()) error = loadPointSamplerOptions(&loader, &sampler_options_);
     NODELET_INFO_STREAM("parameters:" << loader.summary() << "\n  classes = " << classes_.size());
+    if (error.empty()) error = parameters.error();
     if (error.empty() && queue_size < 1) error = "queue_size must be >= 1";
     if (error.empty() && transport != "raw" && transport != "compressed")
       error = "transport must be raw or compressed (got '" + transport + "')";

@@ -20,7 +20,8 @@
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
-#include "semantic_edge_vo/ros/options_loading.h"
+#include "semantic_edge_vo/options_loading.h"
+#include "semantic_edge_vo/ros/ros_parameter_source.h"
 
 namespace semantic_edge_vo {
 
@@ -49,15 +50,17 @@ class MappingNodelet : public nodelet::Nodelet {
   void onInit() override {
     ros::NodeHandle& node = getNodeHandle();
     ros::NodeHandle& private_node = getPrivateNodeHandle();
-    ParameterLoader loader(private_node);
+    const RosParameterSource parameters(private_node);
+    ParameterLoader loader(parameters);
     loader.load("odom_frame", &odom_frame_);
     loader.load("base_frame", &base_frame_);
     loader.load("queue_size", &queue_size_, "messages");
     loader.load("voxel_size", &voxel_size_, "map units (m up to the monocular scale)");
     loader.load("max_map_points", &max_map_points_, "points");
     loader.load("max_path_poses", &max_path_poses_, "poses");
-    std::string error = loadClassTable(private_node, &classes_);
+    std::string error = loadClassTable(&loader, &classes_);
     NODELET_INFO_STREAM("parameters:" << loader.summary() << "\n  classes: " << classes_.size());
+    if (error.empty()) error = parameters.error();
     if (error.empty() && (queue_size_ < 1 || max_map_points_ < 1 || max_path_poses_ < 1))
       error = "queue_size, max_map_points and max_path_poses must be >= 1";
     if (error.empty() && !(voxel_size_ > 0.0)) error = "voxel_size must be > 0";

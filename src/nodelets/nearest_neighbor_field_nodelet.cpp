@@ -8,7 +8,8 @@
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
-#include "semantic_edge_vo/ros/options_loading.h"
+#include "semantic_edge_vo/options_loading.h"
+#include "semantic_edge_vo/ros/ros_parameter_source.h"
 
 namespace semantic_edge_vo {
 
@@ -16,9 +17,11 @@ class NearestNeighborFieldNodelet : public nodelet::Nodelet {
  private:
   void onInit() override {
     ros::NodeHandle& node = getNodeHandle();
-    ParameterLoader loader(getPrivateNodeHandle());
-    const std::string error = loadFieldOptions(&loader, &options_);
+    const RosParameterSource parameters(getPrivateNodeHandle());
+    ParameterLoader loader(parameters);
+    std::string error = loadFieldOptions(&loader, &options_);
     NODELET_INFO_STREAM("parameters:" << loader.summary());
+    if (error.empty()) error = parameters.error();
     if (!error.empty()) {
       NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
       return;

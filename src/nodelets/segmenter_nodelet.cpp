@@ -14,8 +14,9 @@
 #include "semantic_edge_vo/class_table.h"
 #include "semantic_edge_vo/segmenter.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
-#include "semantic_edge_vo/ros/intake_options_loading.h"
-#include "semantic_edge_vo/ros/options_loading.h"
+#include "semantic_edge_vo/intake_options_loading.h"
+#include "semantic_edge_vo/options_loading.h"
+#include "semantic_edge_vo/ros/ros_parameter_source.h"
 
 namespace semantic_edge_vo {
 namespace enc = sensor_msgs::image_encodings;
@@ -26,15 +27,16 @@ class SegmenterNodelet : public nodelet::Nodelet {
     ros::NodeHandle& node = getNodeHandle();
     ros::NodeHandle& private_node = getPrivateNodeHandle();
     rejections_ = std::make_unique<InputRejections>(getName());
-    ParameterLoader loader(private_node);
+    const RosParameterSource parameters(private_node);
+    ParameterLoader loader(parameters);
     SegmenterOptions options;
-    std::string lists;
-    std::string error = loadSegmenterOptions(&loader, private_node, &options, &lists);
+    std::string error = loadSegmenterOptions(&loader, &options);
     loader.load("output_bits", &output_bits_, "(32: 32FC<C> probabilities | 8: 8UC<C>, probability x 255)");
     loader.load("log_every", &log_every_, "frames");
     ClassTable classes;
-    if (error.empty()) error = loadClassTable(private_node, &classes);
-    NODELET_INFO_STREAM("parameters:" << loader.summary() << lists << "\n  classes = " << classes.size());
+    if (error.empty()) error = loadClassTable(&loader, &classes);
+    NODELET_INFO_STREAM("parameters:" << loader.summary() << "\n  classes = " << classes.size());
+    if (error.empty()) error = parameters.error();
     if (error.empty() && output_bits_ != 32 && output_bits_ != 8) error = "output_bits must be 32 or 8";
     if (error.empty() && log_every_ < 1) error = "log_every must be >= 1";
     if (error.empty()) {

@@ -21,7 +21,8 @@
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
-#include "semantic_edge_vo/ros/options_loading.h"
+#include "semantic_edge_vo/options_loading.h"
+#include "semantic_edge_vo/ros/ros_parameter_source.h"
 
 namespace semantic_edge_vo {
 
@@ -31,7 +32,8 @@ class TrackingNodelet : public nodelet::Nodelet {
 
   void onInit() override {
     ros::NodeHandle& node = getNodeHandle();
-    ParameterLoader loader(getPrivateNodeHandle());
+    const RosParameterSource parameters(getPrivateNodeHandle());
+    ParameterLoader loader(parameters);
     loader.load("odom_frame", &odom_frame_);
     loader.load("base_frame", &base_frame_);
     loader.load("publish_tf", &publish_tf_);
@@ -39,6 +41,7 @@ class TrackingNodelet : public nodelet::Nodelet {
     loader.load("use_edges", &use_edges_);
     std::string error = loadOdometryOptions(&loader, &options_);
     NODELET_INFO_STREAM("parameters:" << loader.summary());
+    if (error.empty()) error = parameters.error();
     if (error.empty() && (odom_frame_.empty() || base_frame_.empty() || odom_frame_ == base_frame_))
       error = "odom_frame and base_frame must be non-empty and differ";
     if (!error.empty()) {

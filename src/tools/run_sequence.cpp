@@ -1,27 +1,33 @@
 // Runs the odometry offline, deterministically, on a KITTI odometry folder or a synthetic sequence.
 //   run_sequence --sequence DIR --output OUT [--field snnf|onnf|annf|none]
-//       [--intake canny|fused|semantic_edges] [--segmenter-model PATH] [--frames N] [--quiet]
+//       [--intake canny|fused|semantic_edges] [--segmenter-model PATH] [--config FILE] [--frames N] [--quiet]
+// --config reads a file laid out like config/semantic_edge_vo.yaml (the nodelets' parameters: the
+// edge_intake, segmenter, nearest_neighbor_field and tracking blocks); the flags override it.
 // Writes OUT/poses_kitti.txt (one line per input frame, camera-to-world of camera 0, frame 0 at
-// identity), OUT/poses_tum.txt, OUT/timing.txt (per frame and stage, ms) and prints a summary.
+// identity), OUT/poses_tum.txt, OUT/timing.txt (per frame and stage, ms), OUT/parameters.txt
+// (every option used) and prints a summary.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 
-#include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/intake_options_loading.h"
 #include "semantic_edge_vo/odometry.h"
+#include "semantic_edge_vo/options_loading.h"
 #include "semantic_edge_vo/progress_bar.h"
+#include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/sequence_input.h"
 #include "semantic_edge_vo/trajectory_io.h"
+#include "semantic_edge_vo/yaml_parameter_source.h"
 
 using namespace semantic_edge_vo;
 
 namespace {
 
 struct Arguments {
-  std::string sequence, output, field = "snnf", intake = "canny", segmenter_model;
+  std::string sequence, output, field, intake, segmenter_model, config;  ///< field, intake: empty = config's
   int frames = 0;
   bool quiet = false;
 };
@@ -40,6 +46,7 @@ std::string parse(int argc, char** argv, Arguments* args) {
     else if (flag == "--field") args->field = value;
     else if (flag == "--intake") args->intake = value;
     else if (flag == "--segmenter-model") args->segmenter_model = value;
+    else if (flag == "--config") args->config = value;
     else if (flag == "--frames") args->frames = std::atoi(value.c_str());
     else return "unknown flag " + flag;
   }
@@ -47,39 +54,81 @@ std::string parse(int argc, char** argv, Arguments* args) {
   return {};
 }
 
+/// Everything the run is configured with: built-in defaults, then the config file, then the flags.
+struct RunOptions {
+  FrameBuilderOptions frame;
+  OdometryOptions odometry;
+  SegmenterOptions segmenter;
+  ClassTable classes = ClassTable::cityscapes();
+  std::string summary;  ///< every option with its value, as read from the config file or defaulted
+};
+
+/// Reads the nodelets' blocks of a config file, under the names the nodelets use (no file: every
+/// option at its default, still listed in the summary).
+std::string loadConfig(const std::string& path, RunOptions* options) {
+  const YamlParameterSource file(path);
+  if (!file.error().empty()) return file.error();
+  const YamlParameterSource intake = file.section("edge_intake"), segmenter = file.section("segmenter"),
+                            field = file.section("nearest_neighbor_field"), tracking = file.section("tracking");
+  ParameterLoader intake_loader(intake), segmenter_loader(segmenter), field_loader(field), tracking_loader(tracking);
+  std::string error = loadSemanticEdgeOptions(&intake_loader, &options->frame.intake);
+  if (error.empty()) error = loadPointSamplerOptions(&intake_loader, &options->frame.sampler);
+  if (error.empty()) error = loadClassTable(&intake_loader, &options->classes);
+  if (error.empty()) error = loadSegmenterOptions(&segmenter_loader, &options->segmenter);
+  if (error.empty()) error = loadFieldOptions(&field_loader, &options->frame.field);
+  tracking_loader.load("use_edges", &options->frame.use_field);
+  if (error.empty()) error = loadOdometryOptions(&tracking_loader, &options->odometry);
+  for (const ParameterSource* source : {&intake, &segmenter, &field, &tracking})
+    if (error.empty()) error = source->error();
+  options->summary = intake_loader.summary() + segmenter_loader.summary() + field_loader.summary() + tracking_loader.summary();
+  return error;
+}
+
+/// The command line's choices over the config's.
+std::string applyFlags(const Arguments& args, RunOptions* options) {
+  if (!args.intake.empty() && !parseIntakeMode(args.intake, &options->frame.intake.mode))
+    return "--intake must be canny, fused or semantic_edges (got '" + args.intake + "')";
+  if (!args.field.empty()) {
+    options->frame.use_field = args.field != "none";
+    if (options->frame.use_field && !parseFieldKind(args.field, &options->frame.field.kind))
+      return "--field must be snnf, onnf, annf or none (got '" + args.field + "')";
+  }
+  if (!args.segmenter_model.empty()) options->segmenter.model_path = args.segmenter_model;
+  options->summary += "\n  command line: intake " + args.intake + ", field " + args.field + ", segmenter model " +
+                      args.segmenter_model + " (empty: as above)";
+  std::string error = options->frame.validate();
+  return error.empty() ? options->odometry.validate() : error;
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Arguments args;
+  RunOptions options;
   std::string error = parse(argc, argv, &args);
-  FrameBuilderOptions frame_options;
-  if (error.empty() && !parseIntakeMode(args.intake, &frame_options.intake.mode))
-    error = "--intake must be canny, fused or semantic_edges (got '" + args.intake + "')";
-  frame_options.use_field = args.field != "none";
-  if (error.empty() && frame_options.use_field && !parseFieldKind(args.field, &frame_options.field.kind))
-    error = "--field must be snnf, onnf, annf or none (got '" + args.field + "')";
-  OdometryOptions odometry_options;
-  if (error.empty()) error = frame_options.validate();
-  if (error.empty()) error = odometry_options.validate();
+  if (error.empty()) error = loadConfig(args.config, &options);
+  if (error.empty()) error = applyFlags(args, &options);
   if (!error.empty()) {
     std::fprintf(stderr, "run_sequence: %s\n(usage: see the comment at the top of src/tools/run_sequence.cpp)\n", error.c_str());
     return 2;
   }
-  const ClassTable classes = ClassTable::cityscapes();
+  const FrameBuilderOptions& frame_options = options.frame;
   SequenceInput input;
-  error = input.open(args.sequence, frame_options.intake.mode, args.segmenter_model, classes.size());
+  error = input.open(args.sequence, frame_options.intake.mode, options.segmenter, options.classes.size());
   if (!error.empty()) {
     std::fprintf(stderr, "run_sequence: %s\n", error.c_str());
     return 1;
   }
   std::filesystem::create_directories(args.output);
   const int frames = args.frames > 0 ? std::min<int>(args.frames, static_cast<int>(input.size())) : static_cast<int>(input.size());
-  std::printf("run_sequence: %s, %d frames, %dx%d, intake %s, field %s\n", args.sequence.c_str(), frames,
-              input.camera().width, input.camera().height, args.intake.c_str(), args.field.c_str());
+  const std::string field_name = frame_options.use_field ? toString(frame_options.field.kind) : "none";
+  std::printf("run_sequence: %s, %d frames, %dx%d, intake %s, field %s, window optimisation %s%s%s\n", args.sequence.c_str(),
+              frames, input.camera().width, input.camera().height, toString(frame_options.intake.mode),
+              field_name.c_str(), options.odometry.optimize_window ? "on" : "off", args.config.empty() ? "" : ", config ",
+              args.config.c_str());
 
-  const FrameBuilder builder(frame_options, input.camera(), classes.names());
-  Odometry odometry(odometry_options, input.camera());
+  const FrameBuilder builder(frame_options, input.camera(), options.classes.names());
+  Odometry odometry(options.odometry, input.camera());
   std::vector<FramePose> poses;
   std::vector<double> intake_ms(static_cast<std::size_t>(frames), 0.0), segmenter_ms(static_cast<std::size_t>(frames), 0.0);
   ProgressBar progress(frames, !args.quiet);
@@ -125,7 +174,9 @@ int main(int argc, char** argv) {
   }
   for (const std::string& written :
        {writeKittiPoses(args.output + "/poses_kitti.txt", trajectory), writeTumTrajectory(args.output + "/poses_tum.txt", trajectory),
-        writeTextFile(args.output + "/timing.txt", timing.str())})
+        writeTextFile(args.output + "/timing.txt", timing.str()),
+        writeTextFile(args.output + "/parameters.txt", "# " + (args.config.empty() ? "built-in defaults" : args.config) +
+                                                           ", then the command line:" + options.summary + "\n")})
     if (!written.empty()) {
       std::fprintf(stderr, "run_sequence: %s\n", written.c_str());
       return 1;
@@ -135,6 +186,6 @@ int main(int argc, char** argv) {
               frames, trusted, lost, keyframes, median(totals), median(intake_ms),
               median([&] { std::vector<double> v; for (auto& p : poses) v.push_back(p.tracking_ms); return v; }()),
               median([&] { std::vector<double> v; for (auto& p : poses) v.push_back(p.mapping_ms); return v; }()));
-  std::printf("run_sequence: wrote %s/poses_kitti.txt, poses_tum.txt, timing.txt\n", args.output.c_str());
+  std::printf("run_sequence: wrote %s/poses_kitti.txt, poses_tum.txt, timing.txt, parameters.txt\n", args.output.c_str());
   return 0;
 }

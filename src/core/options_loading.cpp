@@ -1,6 +1,4 @@
-#include "semantic_edge_vo/ros/options_loading.h"
-
-#include <xmlrpcpp/XmlRpcValue.h>
+#include "semantic_edge_vo/options_loading.h"
 
 namespace semantic_edge_vo {
 
@@ -51,25 +49,9 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   return options->validate();
 }
 
-std::string loadClassTable(const ros::NodeHandle& node, ClassTable* table) {
-  XmlRpc::XmlRpcValue list;
-  if (!node.getParam("classes", list)) {
-    *table = ClassTable::cityscapes();
-    return table->validate();
-  }
-  if (list.getType() != XmlRpc::XmlRpcValue::TypeArray) return "classes must be a list of {name, id, rgb}";
-  std::vector<SemanticClass> classes;
-  for (int i = 0; i < list.size(); ++i) {
-    XmlRpc::XmlRpcValue& entry = list[i];
-    if (entry.getType() != XmlRpc::XmlRpcValue::TypeStruct || !entry.hasMember("name") || !entry.hasMember("id") ||
-        !entry.hasMember("rgb") || entry["rgb"].getType() != XmlRpc::XmlRpcValue::TypeArray || entry["rgb"].size() != 3)
-      return "classes[" + std::to_string(i) + "] must be {name: string, id: int, rgb: [r, g, b]}";
-    SemanticClass c;
-    c.name = static_cast<std::string>(entry["name"]);
-    c.id = static_cast<int>(entry["id"]);
-    for (int k = 0; k < 3; ++k) c.rgb[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(static_cast<int>(entry["rgb"][k]));
-    classes.push_back(c);
-  }
+std::string loadClassTable(ParameterLoader* loader, ClassTable* table) {
+  std::vector<SemanticClass> classes = ClassTable::cityscapes().classes();
+  loader->load("classes", &classes, "(name, id, rgb)");
   *table = ClassTable(std::move(classes));
   return table->validate();
 }

@@ -1,9 +1,8 @@
-#include "semantic_edge_vo/ros/intake_options_loading.h"
+#include "semantic_edge_vo/intake_options_loading.h"
 
-#include <sstream>
 #include <vector>
 
-#include "semantic_edge_vo/ros/options_loading.h"
+#include "semantic_edge_vo/options_loading.h"
 
 namespace semantic_edge_vo {
 
@@ -20,8 +19,7 @@ std::string loadSemanticEdgeOptions(ParameterLoader* loader, SemanticEdgeOptions
   return canny_error.empty() ? options->validate() : canny_error;
 }
 
-std::string loadSegmenterOptions(ParameterLoader* loader, const ros::NodeHandle& node, SegmenterOptions* options,
-                                 std::string* lists) {
+std::string loadSegmenterOptions(ParameterLoader* loader, SegmenterOptions* options) {
   loader->load("model_path", &options->model_path, "(file)");
   loader->load("config_path", &options->config_path, "(file; caffe, tensorflow, darknet)");
   loader->load("format", &options->format, "(torch | onnx | caffe | tensorflow | darknet)");
@@ -30,15 +28,10 @@ std::string loadSegmenterOptions(ParameterLoader* loader, const ros::NodeHandle&
   loader->load("scale", &options->scale, "per gray level");
   loader->load("swap_rb", &options->swap_rb);
   std::vector<double> mean(options->mean.begin(), options->mean.end());
-  node.getParam("mean", mean);
+  loader->load("mean", &mean, "gray levels (B, G, R)");
   if (mean.size() != 3) return "mean must list 3 values (B, G, R gray levels)";
   std::copy(mean.begin(), mean.end(), options->mean.begin());
-  node.getParam("output_channels", options->output_channels);
-  std::ostringstream text;
-  text << "\n  mean = [" << mean[0] << ", " << mean[1] << ", " << mean[2] << "] gray levels\n  output_channels = [";
-  for (std::size_t i = 0; i < options->output_channels.size(); ++i) text << (i ? ", " : "") << options->output_channels[i];
-  text << "]" << (options->output_channels.empty() ? " (default: class c reads output c + 1)" : "");
-  *lists = text.str();
+  loader->load("output_channels", &options->output_channels, "(empty: class c reads output c + 1)");
   return options->validate();
 }
 
