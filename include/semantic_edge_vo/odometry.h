@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "semantic_edge_vo/deferred_window_optimization.h"
 #include "semantic_edge_vo/epipolar_depth.h"
 #include "semantic_edge_vo/keyframe.h"
 #include "semantic_edge_vo/tracker.h"
@@ -25,6 +26,9 @@ struct OdometryOptions {
   EpipolarSearchOptions epipolar;
   WindowOptimizerOptions window_optimizer;
   bool optimize_window = true;         ///< run the windowed optimisation at each new keyframe
+  /// Frames after its keyframe at which the windowed optimisation, run meanwhile on its own thread,
+  /// is merged (waiting for it if needed; at the next keyframe at the latest). 0: in line, at once.
+  int window_delay = 0;
   double keyframe_flow = 60.0;         ///< new keyframe when the keyframe points moved this much on average, px
   double keyframe_min_in_view = 0.6;   ///< ... or fewer of them are in view (fraction)
   int keyframe_max_interval = 8;      ///< ... or this many frames passed
@@ -45,7 +49,8 @@ struct FramePose {
   bool keyframe = false;    ///< the frame became a keyframe
   int keyframe_id = -1;     ///< keyframe it was tracked against
   TrackingResult tracking;
-  double tracking_ms = 0.0, mapping_ms = 0.0;
+  double tracking_ms = 0.0, mapping_ms = 0.0;  ///< on the caller's thread (mapping: depths, keyframes, waiting)
+  double window_ms = 0.0;  ///< the windowed optimisation merged at this frame (on its own thread when deferred)
 };
 
 /// Monocular semantic edge odometry, sequential and deterministic: initialisation, frame-to-keyframe
@@ -72,7 +77,13 @@ class Odometry {
   /// Refines the active keyframe's depths with a tracked frame.
   void refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf);
   /// Makes the frame a keyframe and returns its pose after the windowed optimisation.
-  Eigen::Isometry3d makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, const Eigen::Isometry3d& T_world_cam);
+  Eigen::Isometry3d makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, Eigen::Isometry3d T_world_cam,
+                                 FramePose* pose);
+  /// Optimises the window at a new keyframe: in line, or started on its own thread.
+  void optimizeWindow(int frame_index, FramePose* pose);
+  /// Merges the deferred optimisation; the recent poses move with the active keyframe.
+  /// @return the correction of the active keyframe's pose (identity when it did not move)
+  Eigen::Isometry3d mergeWindow(FramePose* pose);
   void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);
   std::vector<Eigen::Isometry3d> guesses(const Keyframe& keyframe) const;
   void remember(const FramePose& pose);
@@ -81,6 +92,8 @@ class Odometry {
   PinholeCamera camera_;
   Tracker tracker_;
   WindowOptimizer window_optimizer_;
+  DeferredWindowOptimization deferred_window_;
+  int merge_window_at_ = 0;  ///< frame index at which the deferred optimisation is merged
   TwoViewInitializer initializer_;
   OdometryState state_ = OdometryState::kInitializing;
   bool recovering_ = false;

@@ -11,6 +11,7 @@ namespace semantic_edge_vo {
 struct TrackerOptions {
   int levels = 4;                    ///< coarse-to-fine over levels-1 .. 0 (needs as many pyramid and field levels)
   int iterations_per_level = 10;
+  double min_step = 1e-3;            ///< a level stops when an accepted step is this small (se(3) norm)
   double photometric_huber = 9.0;    ///< Huber threshold of gradient-magnitude residuals, gray levels / px
   double photometric_sigma = 4.0;    ///< their scale when weighed against edge residuals, gray levels / px
   double edge_huber = 1.5;           ///< Huber threshold of point-to-tangent residuals, px of the level

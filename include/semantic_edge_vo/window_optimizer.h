@@ -9,8 +9,8 @@ namespace semantic_edge_vo {
 
 struct WindowOptimizerOptions {
   int keyframes = 5;               ///< newest keyframes optimised together (the oldest of them is held fixed)
-  int max_iterations = 5;          ///< Levenberg-Marquardt iterations per solve
-  int point_stride = 2;            ///< every n-th point of each host keyframe takes part
+  int max_iterations = 3;          ///< Levenberg-Marquardt iterations per solve
+  int point_stride = 4;            ///< every n-th point of each host keyframe takes part
   double photometric_sigma = 4.0;  ///< gray levels / px (gradient magnitude)
   double photometric_huber = 9.0;  ///< gray levels / px
   double edge_sigma = 1.0;         ///< px

@@ -76,6 +76,7 @@ std::string OdometryOptions::validate() const {
     error = "keyframe_flow must be > 0 px and keyframe_min_in_view in [0, 1]";
   if (error.empty() && (keyframe_max_interval < 1 || window_size < 1 || !(depth_neighbour_radius > 0)))
     error = "keyframe_max_interval and window_size must be >= 1, depth_neighbour_radius > 0 px";
+  if (error.empty() && window_delay < 0) error = "window_delay must be >= 0 frames";
   return error;
 }
 
@@ -84,11 +85,17 @@ Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera)
       camera_(camera),
       tracker_(options.tracker),
       window_optimizer_(options.window_optimizer),
+      deferred_window_(options.window_optimizer),
       initializer_(options.initializer, camera) {}
 
 std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFrame>& frame) {
   if (state_ != OdometryState::kTracking) return initialize(frame);
-  return {track(frame)};
+  FramePose merged;
+  if (deferred_window_.running() && frame->index >= merge_window_at_) mergeWindow(&merged);
+  FramePose pose = track(frame);
+  pose.window_ms += merged.window_ms;
+  pose.mapping_ms += merged.mapping_ms;
+  return {pose};
 }
 
 std::vector<FramePose> Odometry::flush() {
@@ -241,7 +248,7 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
   ++frames_since_keyframe_;
   const bool few_in_view = pose.tracking.points_in_view < options_.keyframe_min_in_view * pose.tracking.points;
   if (pose.tracking.mean_flow > options_.keyframe_flow || few_in_view || frames_since_keyframe_ >= options_.keyframe_max_interval) {
-    pose.T_world_cam = makeKeyframe(frame, pose.T_world_cam);
+    pose.T_world_cam = makeKeyframe(frame, pose.T_world_cam, &pose);
     pose.keyframe = true;
   }
   pose.mapping_ms = elapsedMs(mapping_start);
@@ -259,7 +266,11 @@ void Odometry::refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d&
   tracker_.setKeyframe(active_);
 }
 
-Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, const Eigen::Isometry3d& T_world_cam) {
+Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, Eigen::Isometry3d T_world_cam,
+                                         FramePose* pose) {
+  // One deferred optimisation at a time: the previous one is merged first, and the new keyframe,
+  // tracked against the active one, moves with it.
+  if (deferred_window_.running()) T_world_cam = mergeWindow(pose) * T_world_cam;
   auto keyframe = std::make_shared<Keyframe>();
   keyframe->id = next_keyframe_id_++;
   keyframe->T_world_cam = T_world_cam;
@@ -287,10 +298,34 @@ Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFra
 
   keyframes_.push_back(keyframe);
   while (static_cast<int>(keyframes_.size()) > options_.window_size) keyframes_.pop_front();
-  if (options_.optimize_window) window_optimizer_.optimize(keyframes_);
+  if (options_.optimize_window) optimizeWindow(frame->index, pose);
   setActiveKeyframe(keyframe);
   frames_since_keyframe_ = 0;
   return keyframe->T_world_cam;
+}
+
+void Odometry::optimizeWindow(int frame_index, FramePose* pose) {
+  if (options_.window_delay > 0) {
+    deferred_window_.start(keyframes_);
+    merge_window_at_ = frame_index + options_.window_delay;
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  window_optimizer_.optimize(keyframes_);
+  pose->window_ms += elapsedMs(start);
+}
+
+Eigen::Isometry3d Odometry::mergeWindow(FramePose* pose) {
+  const DeferredWindowOptimization::Merge merge = deferred_window_.finish(keyframes_);
+  pose->window_ms += merge.optimization_ms;
+  pose->mapping_ms += merge.waited_ms;
+  const auto moved = merge.corrections.find(active_->id);
+  if (moved == merge.corrections.end()) return Eigen::Isometry3d::Identity();
+  const Eigen::Isometry3d& correction = moved->second;
+  T_world_last_ = orthonormalized(correction * T_world_last_);
+  T_world_before_ = orthonormalized(correction * T_world_before_);
+  tracker_.setKeyframe(active_);
+  return correction;
 }
 
 void Odometry::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {

@@ -34,6 +34,7 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   TrackerOptions& tracker = options->tracker;
   loader->load("tracker/levels", &tracker.levels, "levels");
   loader->load("tracker/iterations_per_level", &tracker.iterations_per_level, "iterations");
+  loader->load("tracker/min_step", &tracker.min_step, "(se(3) step norm)");
   loader->load("tracker/photometric_huber", &tracker.photometric_huber, "gray levels/px");
   loader->load("tracker/edge_huber", &tracker.edge_huber, "px of each level");
   loader->load("tracker/edge_weight", &tracker.edge_weight, "");
@@ -46,6 +47,15 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("keyframe_max_interval", &options->keyframe_max_interval, "frames");
   loader->load("window_size", &options->window_size, "keyframes");
   loader->load("optimize_window", &options->optimize_window);
+  loader->load("window_delay", &options->window_delay, "frames (0: in line)");
+  WindowOptimizerOptions& window = options->window_optimizer;
+  loader->load("window_optimizer/keyframes", &window.keyframes, "keyframes");
+  loader->load("window_optimizer/max_iterations", &window.max_iterations, "iterations");
+  loader->load("window_optimizer/point_stride", &window.point_stride, "points");
+  loader->load("window_optimizer/photometric_huber", &window.photometric_huber, "gray levels/px");
+  loader->load("window_optimizer/edge_huber", &window.edge_huber, "px");
+  loader->load("window_optimizer/edge_weight", &window.edge_weight, "");
+  loader->load("window_optimizer/edge_radius", &window.edge_radius, "px");
   return options->validate();
 }
 

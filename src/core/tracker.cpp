@@ -20,7 +20,7 @@ int pointStride(int level) { return level >= 2 ? 1 << (level - 1) : 1; }
 std::string TrackerOptions::validate() const {
   std::ostringstream error;
   if (levels < 1 || levels > 8) error << "levels must be in [1, 8] (got " << levels << ")";
-  else if (iterations_per_level < 1) error << "iterations_per_level must be >= 1";
+  else if (iterations_per_level < 1 || !(min_step >= 0.0)) error << "iterations_per_level must be >= 1, min_step >= 0";
   else if (!(photometric_huber > 0 && photometric_sigma > 0 && edge_huber > 0 && edge_sigma > 0))
     error << "Huber thresholds and sigmas must be > 0";
   else if (!(edge_weight >= 0)) error << "edge_weight must be >= 0";
@@ -167,7 +167,7 @@ double Tracker::optimizeLevel(int level, const ImagePyramid& frame, const Neares
       cost = candidate_cost;
       normal = candidate_normal;
       lambda = std::max(lambda * 0.5, 1e-6);
-      if (step.norm() < 1e-6) break;
+      if (step.norm() < options_.min_step) break;
     } else {
       lambda *= 4.0;
       if (lambda > 1e4) break;
@@ -178,28 +178,40 @@ double Tracker::optimizeLevel(int level, const ImagePyramid& frame, const Neares
 
 TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFieldView* field,
                               const std::vector<Eigen::Isometry3d>& guesses) const {
-  TrackingResult result;
-  if (!keyframe_ || references_.empty()) return result;
+  if (!keyframe_ || references_.empty()) return TrackingResult();
   const int levels = std::min({static_cast<int>(references_.size()), frame.levels(),
                                field ? static_cast<int>(field->levels.size()) : 99});
-  // The first guess (constant velocity) is taken when it tracks well; otherwise every guess is
-  // optimised through all levels and the lowest full-resolution cost wins.
+  // The first guess (constant velocity) is taken when it tracks well. Otherwise the other guesses
+  // are optimised on the coarsest level only (where the basin is found), the one with the lowest
+  // cost there goes on through the finer levels, and the lower full-resolution cost of the two wins.
   const std::vector<Eigen::Isometry3d> candidates =
       guesses.empty() ? std::vector<Eigen::Isometry3d>{Eigen::Isometry3d::Identity()} : guesses;
-  double best_cost = std::numeric_limits<double>::max();
-  for (std::size_t g = 0; g < candidates.size(); ++g) {
-    TrackingResult attempt;
-    attempt.T_cam_kf = candidates[g];
-    attempt.guess = static_cast<int>(g);
-    for (int level = levels - 1; level >= 0; --level) optimizeLevel(level, frame, field, &attempt.T_cam_kf, &attempt.iterations);
-    const double cost = evaluate(0, attempt.T_cam_kf, frame, field, nullptr, &attempt);
-    const int iterations = result.iterations + attempt.iterations;
-    if (cost < best_cost) {
-      best_cost = cost;
-      result = attempt;
+  const auto refine = [&](TrackingResult* attempt, int from_level) {
+    for (int level = from_level; level >= 0; --level) optimizeLevel(level, frame, field, &attempt->T_cam_kf, &attempt->iterations);
+    return evaluate(0, attempt->T_cam_kf, frame, field, nullptr, attempt);
+  };
+  TrackingResult result;
+  result.T_cam_kf = candidates[0];
+  const double first_cost = refine(&result, levels - 1);
+  if (candidates.size() > 1 &&
+      result.photometric_inliers < options_.accept_inlier_ratio * std::max(1, result.photometric_residuals)) {
+    TrackingResult best;
+    double best_coarse = std::numeric_limits<double>::max();
+    int iterations = 0;
+    for (std::size_t g = 1; g < candidates.size(); ++g) {
+      TrackingResult attempt;
+      attempt.T_cam_kf = candidates[g];
+      attempt.guess = static_cast<int>(g);
+      const double coarse = optimizeLevel(levels - 1, frame, field, &attempt.T_cam_kf, &iterations);
+      if (coarse < best_coarse) {
+        best_coarse = coarse;
+        best = attempt;
+      }
     }
+    const double cost = refine(&best, levels - 2);
+    iterations += result.iterations + best.iterations;
+    if (cost < first_cost) result = best;
     result.iterations = iterations;
-    if (g == 0 && attempt.photometric_inliers >= options_.accept_inlier_ratio * std::max(1, attempt.photometric_residuals)) break;
   }
 
   // Mean flow of the keyframe points: keyframe decisions.

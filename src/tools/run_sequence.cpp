@@ -157,7 +157,7 @@ int main(int argc, char** argv) {
 
   Trajectory trajectory;
   std::ostringstream timing;
-  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms trusted state keyframe\n";
+  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe\n";
   int trusted = 0, keyframes = 0, lost = 0;
   std::vector<double> totals;
   for (const FramePose& pose : poses) {
@@ -167,7 +167,7 @@ int main(int argc, char** argv) {
     const double total = intake_ms[i] + pose.tracking_ms + pose.mapping_ms;
     totals.push_back(total);
     timing << pose.index << ' ' << segmenter_ms[i] << ' ' << intake_ms[i] << ' ' << pose.tracking_ms << ' ' << pose.mapping_ms
-           << ' ' << total << ' ' << pose.trusted << ' ' << toString(pose.state) << ' ' << pose.keyframe << '\n';
+           << ' ' << total << ' ' << pose.window_ms << ' ' << pose.tracking.iterations << ' ' << pose.trusted << ' ' << toString(pose.state) << ' ' << pose.keyframe << '\n';
     trusted += pose.trusted;
     keyframes += pose.keyframe;
     lost += pose.state == OdometryState::kLost;
@@ -181,11 +181,18 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "run_sequence: %s\n", written.c_str());
       return 1;
     }
+  // Median of a stage over the frames (or only those where it ran).
+  const auto stage = [&](double FramePose::*ms, bool ran_only) {
+    std::vector<double> values;
+    for (const FramePose& pose : poses)
+      if (!ran_only || pose.*ms > 0.0) values.push_back(pose.*ms);
+    return values.empty() ? 0.0 : median(values);
+  };
   std::printf("run_sequence: %d frames, %d with a trusted pose, %d lost, %d keyframes; median per frame %.1f ms "
-              "(intake %.1f, tracking %.1f, mapping %.1f)\n",
-              frames, trusted, lost, keyframes, median(totals), median(intake_ms),
-              median([&] { std::vector<double> v; for (auto& p : poses) v.push_back(p.tracking_ms); return v; }()),
-              median([&] { std::vector<double> v; for (auto& p : poses) v.push_back(p.mapping_ms); return v; }()));
+              "(intake %.1f, tracking %.1f, mapping %.1f); windowed optimisation %.1f ms each, %s\n",
+              frames, trusted, lost, keyframes, median(totals), median(intake_ms), stage(&FramePose::tracking_ms, false),
+              stage(&FramePose::mapping_ms, false), stage(&FramePose::window_ms, true),
+              options.odometry.window_delay > 0 ? "on its own thread (not in the total)" : "in line (in mapping)");
   std::printf("run_sequence: wrote %s/poses_kitti.txt, poses_tum.txt, timing.txt, parameters.txt\n", args.output.c_str());
   return 0;
 }
