@@ -1,4 +1,6 @@
 #pragma once
+#include <array>
+#include <cstdint>
 #include <string>
 
 #include <opencv2/core/mat.hpp>
@@ -16,6 +18,9 @@ enum class ClassEvidenceForm {
 bool parseClassEvidenceForm(const std::string& text, ClassEvidenceForm* form);
 const char* toString(ClassEvidenceForm form);
 
+/// Pixels whose class evidence is pooled: an edge pixel and one pixel on each side of it.
+using PixelTriple = std::array<cv::Point, 3>;
+
 /// Per-pixel class evidence of one image at its resolution: class probabilities (fused intake) or
 /// per-class edge probabilities (semantic_edges intake). A view: `values` may wrap a message buffer.
 struct ClassEvidence {
@@ -28,13 +33,20 @@ struct ClassEvidence {
   /// expected. Values are not read here (see invalidValueCount()).
   std::string checkLayout(cv::Size image_size, std::string* detail) const;
   /// Number of NaN, negative or above-1 probabilities (32-bit float form only; 8-bit forms cannot
-  /// hold them). Scans the whole image (about 35 MB at 1241x376x19 floats, ~2 ms with SIMD); counts
-  /// one by one only when something is wrong.
+  /// hold them). Scans the whole image (about 35 MB at 1241x376x19 floats, ~1.1 ms with SIMD, about
+  /// the time to read it from memory); counts one by one only when something is wrong.
   std::size_t invalidValueCount() const;
+  /// Whether rows [begin, end) hold a NaN, negative or above-1 probability (32-bit float form only).
+  bool invalidInRows(int begin, int end) const;
 
-  /// Probability (or edge probability) of each class at pixel (x, y), written to out[0..classes).
-  /// kLabels: the confidence for the labelled class, 0 for the others; kBitmask: 1 for set bits.
-  void probabilitiesAt(int x, int y, float* out) const;
+  /// Class mask of the per-class maximum of the probabilities (or edge probabilities) at the pixels:
+  /// the most probable class (the first on ties) plus every class reaching `threshold`; 0 when every
+  /// value is 0. `best` receives the highest value. kLabels: the confidence for the labelled class,
+  /// 0 for the others; kBitmask: 1 for set bits. At most ClassTable::kMaxClasses classes.
+  std::uint32_t classMaskAcross(const PixelTriple& pixels, float threshold, float* best) const;
+  /// Asks the memory for the values at the pixels, so that a later classMaskAcross() of them need
+  /// not wait for them (a hint: reads nothing, changes nothing).
+  void prefetch(const PixelTriple& pixels) const;
   /// Class-agnostic edge probability, CV_32FC1 at full resolution: the maximum over classes
   /// (kProbabilities), the strength byte / 255 (kBitmask). Not defined for kLabels.
   /// @param[out] invalid if given, invalidValueCount() found in the same pass over the values

@@ -8,6 +8,10 @@ namespace semantic_edge_vo {
 
 struct EdgeSetView;
 
+/// Index of the pixel nearest to a coordinate > -0.5 (halves round up, like std::lround, but inline:
+/// no libm call per edge). Callers clamp or skip smaller coordinates first.
+inline int nearestPixelIndex(float coordinate) { return static_cast<int>(coordinate + 0.5f); }
+
 /// Thinned edge pixels of one image, structure of arrays (the layout of SemanticEdgeFrame).
 /// Positions in full-resolution pixels; normals are unit image-gradient directions (dark to bright).
 struct EdgeSet {

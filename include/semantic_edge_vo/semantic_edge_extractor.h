@@ -66,7 +66,8 @@ class SemanticEdgeExtractor {
 
  private:
   ExtractionError checkInputs(const cv::Mat& gray, const ClassEvidence& classes, const cv::Mat& edge_probability) const;
-  void assignFusedClasses(const ClassEvidence& classes, EdgeSet* edges) const;
+  /// False when a class probability is invalid (NaN or outside [0, 1]), found in the same pass.
+  bool assignFusedClasses(const ClassEvidence& classes, EdgeSet* edges) const;
   void assignEdgeClasses(const ClassEvidence& classes, EdgeSet* edges) const;
 
   SemanticEdgeOptions options_;

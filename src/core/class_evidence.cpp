@@ -1,22 +1,17 @@
 #include "semantic_edge_vo/class_evidence.h"
 
 #include <algorithm>
-#include <cstring>
 #include <sstream>
 
 #include <opencv2/core.hpp>
 #include <opencv2/core/hal/intrin.hpp>
 
+#include "semantic_edge_vo/class_table.h"
+
 namespace semantic_edge_vo {
 namespace {
 
 constexpr int kBitmaskClasses = 24;
-
-/// Bits of a float outside [0, 1] or NaN: positive floats order like their bit patterns, so anything
-/// above the bits of 1.0f is too large or NaN, and every negative pattern but -0 is below zero.
-constexpr std::uint32_t kOneBits = 0x3f800000u, kNegativeZeroBits = 0x80000000u;
-
-inline bool invalidBits(std::uint32_t bits) { return bits > kOneBits && bits != kNegativeZeroBits; }
 
 std::size_t countInvalid(const cv::Mat& values) {
   std::size_t invalid = 0;
@@ -28,73 +23,117 @@ std::size_t countInvalid(const cv::Mat& values) {
   return invalid;
 }
 
-/// Whether any float is NaN or outside [0, 1], four at a time.
-bool anyInvalid(const cv::Mat& values) {
-  const cv::v_uint32x4 one = cv::v_setall_u32(kOneBits), negative_zero = cv::v_setall_u32(kNegativeZeroBits);
-  cv::v_uint32x4 bad = cv::v_setzero_u32();
-  std::uint32_t bad_tail = 0;
-  const int n = values.cols * values.channels();
-  for (int y = 0; y < values.rows; ++y) {
-    const std::uint32_t* row = values.ptr<std::uint32_t>(y);
+/// Whether any of the floats seen is NaN or outside [0, 1], from their minimum and maximum (-0
+/// passes) and a NaN flag: four single-cycle operations per four values, no long dependency chains,
+/// so the check runs at memory speed.
+class RangeCheck {
+ public:
+  void add(const cv::v_float32x4& v) {
+    low_ = cv::v_min(low_, v);
+    high_ = cv::v_max(high_, v);
+    nan_ = nan_ | (v != v);
+  }
+  void add(const float* values, int n) {
     int i = 0;
-    for (; i + 4 <= n; i += 4) {
-      const cv::v_uint32x4 bits = cv::v_load(row + i);
-      bad = bad | ((bits > one) & (bits != negative_zero));
-    }
-    for (; i < n; ++i) bad_tail |= invalidBits(row[i]);
+    for (; i + 4 <= n; i += 4) add(cv::v_load(values + i));
+    for (; i < n; ++i) bad_tail_ |= !(values[i] >= 0.0f && values[i] <= 1.0f);
   }
-  return cv::v_check_any(bad) || bad_tail;
+  /// Byte values are always valid.
+  void add(const cv::v_uint8x16&) {}
+  bool bad() const {
+    return bad_tail_ || cv::v_check_any(nan_) || cv::v_reduce_min(low_) < 0.0f || cv::v_reduce_max(high_) > 1.0f;
+  }
+
+ private:
+  cv::v_float32x4 low_ = cv::v_setzero_f32(), high_ = cv::v_setzero_f32(), nan_ = cv::v_setzero_f32();
+  bool bad_tail_ = false;
+};
+
+/// Maximum over the C channels of each of `cols` pixels, times `scale`, a register of channels at a
+/// time (the last register overlaps the one before when C is not a multiple of its lanes; fewer
+/// channels than lanes are padded with 0, which neither a valid maximum nor the check minds).
+/// Every value also goes to `check`, while it is in a register.
+template <typename T>
+void channelMaximumRow(const T* in, int cols, int c, float scale, float* out, RangeCheck* check) {
+  using Vector = decltype(cv::v_load(in));
+  constexpr int kLanes = Vector::nlanes;
+  for (int x = 0; x < cols; ++x, in += c) {
+    Vector top;
+    if (c < kLanes) {
+      T padded[kLanes] = {};
+      std::copy(in, in + c, padded);
+      top = cv::v_load(padded);
+    } else {
+      top = cv::v_load(in + c - kLanes);
+    }
+    check->add(top);
+    for (int k = 0; k + kLanes < c; k += kLanes) {
+      const Vector v = cv::v_load(in + k);
+      check->add(v);
+      top = cv::v_max(top, v);
+    }
+    out[x] = static_cast<float>(cv::v_reduce_max(top)) * scale;
+  }
 }
 
-/// Per-pixel maximum over the 32-bit float channels, four channels at a time; true when a value is
-/// NaN or outside [0, 1] (checked in the same pass).
-bool channelMaximumFloat(const cv::Mat& values, cv::Mat* maximum) {
-  const int c = values.channels();
-  const cv::v_uint32x4 one = cv::v_setall_u32(kOneBits), negative_zero = cv::v_setall_u32(kNegativeZeroBits);
-  cv::v_uint32x4 bad = cv::v_setzero_u32();
-  std::uint32_t bad_tail = 0;
-  for (int y = 0; y < values.rows; ++y) {
-    const float* in = values.ptr<float>(y);
-    float* out = maximum->ptr<float>(y);
-    for (int x = 0; x < values.cols; ++x, in += c) {
-      cv::v_float32x4 top = cv::v_setall_f32(0.0f);
-      int k = 0;
-      for (; k + 4 <= c; k += 4) {
-        const cv::v_float32x4 v = cv::v_load(in + k);
-        top = cv::v_max(top, v);
-        const cv::v_uint32x4 bits = cv::v_reinterpret_as_u32(v);
-        bad = bad | ((bits > one) & (bits != negative_zero));
-      }
-      float m = cv::v_reduce_max(top);
-      for (; k < c; ++k) {
-        m = std::max(m, in[k]);
-        std::uint32_t bits;
-        std::memcpy(&bits, in + k, sizeof(bits));
-        bad_tail |= invalidBits(bits);
-      }
-      out[x] = m;
+inline cv::v_float32x4 broadcast(float value) { return cv::v_setall_f32(value); }
+inline cv::v_uint8x16 broadcast(std::uint8_t value) { return cv::v_setall_u8(value); }
+
+/// Class mask of the per-class maximum of C values at `count` places: the most probable
+/// class (the first one on ties) plus every class reaching `threshold`; 0 when all are 0.
+template <typename T>
+std::uint32_t classMaskScalar(const T* const* in, std::size_t count, int c, T threshold, T* best) {
+  std::uint32_t mask = 0;
+  int top_class = 0;
+  T top = 0;
+  for (int k = 0; k < c; ++k) {
+    T m = 0;
+    for (std::size_t i = 0; i < count; ++i) m = std::max(m, in[i][k]);
+    if (m > top) {
+      top = m;
+      top_class = k;
     }
+    if (m >= threshold) mask |= 1u << k;
   }
-  return cv::v_check_any(bad) || bad_tail;
+  *best = top;
+  return top > 0 ? mask | 1u << top_class : 0u;
 }
 
-/// Per-pixel maximum over the 8-bit channels (16 at a time), / 255.
-void channelMaximumByte(const cv::Mat& values, cv::Mat* maximum) {
-  const int c = values.channels();
-  for (int y = 0; y < values.rows; ++y) {
-    const std::uint8_t* in = values.ptr<std::uint8_t>(y);
-    float* out = maximum->ptr<float>(y);
-    for (int x = 0; x < values.cols; ++x, in += c) {
-      int k = 0;
-      std::uint8_t m = 0;
-      if (c >= 16) {
-        m = cv::v_reduce_max(cv::v_load(in));
-        k = 16;
-      }
-      for (; k < c; ++k) m = std::max(m, in[k]);
-      out[x] = m * (1.0f / 255.0f);
-    }
+/// classMaskScalar() a register of classes at a time (the last register overlaps the one before
+/// when C is not a multiple of its lanes; maxima and mask bits come out the same twice).
+template <typename T>
+std::uint32_t classMask(const T* const* in, std::size_t count, int c, T threshold, T* best) {
+  using Vector = decltype(cv::v_load(in[0]));
+  constexpr int kLanes = Vector::nlanes;
+  if (c < kLanes) return classMaskScalar(in, count, c, threshold, best);
+  T maximum[ClassTable::kMaxClasses];
+  std::uint32_t mask = 0;
+  Vector top = broadcast(T(0));
+  for (int k = 0; k < c; k += kLanes) {
+    const int at = std::min(k, c - kLanes);
+    Vector m = cv::v_load(in[0] + at);
+    for (std::size_t i = 1; i < count; ++i) m = cv::v_max(m, cv::v_load(in[i] + at));
+    cv::v_store(maximum + at, m);
+    top = cv::v_max(top, m);
+    mask |= static_cast<std::uint32_t>(cv::v_signmask(m >= broadcast(threshold))) << at;
   }
+  *best = cv::v_reduce_max(top);
+  if (!(*best > 0)) return 0u;
+  return mask | 1u << (std::find(maximum, maximum + c, *best) - maximum);
+}
+
+/// The smallest byte whose probability (byte / 255 in float, as everywhere) reaches `threshold`.
+std::uint8_t byteThreshold(float threshold) {
+  int b = std::clamp(static_cast<int>(threshold * 255.0f), 0, 255);
+  while (b > 0 && static_cast<float>(b - 1) * (1.0f / 255.0f) >= threshold) --b;
+  while (b < 255 && static_cast<float>(b) * (1.0f / 255.0f) < threshold) ++b;
+  return static_cast<std::uint8_t>(b);
+}
+
+/// Where the values of pixel p start.
+template <typename T>
+const T* valuesAt(const cv::Mat& values, const cv::Point& p) {
+  return values.ptr<T>(p.y) + p.x * values.channels();
 }
 
 }  // namespace
@@ -159,32 +198,64 @@ std::string ClassEvidence::checkLayout(cv::Size image_size, std::string* detail)
 }
 
 std::size_t ClassEvidence::invalidValueCount() const {
-  if (values.depth() != CV_32F || !anyInvalid(values)) return 0;
-  return countInvalid(values);
+  return invalidInRows(0, values.rows) ? countInvalid(values) : 0;
 }
 
-void ClassEvidence::probabilitiesAt(int x, int y, float* out) const {
+bool ClassEvidence::invalidInRows(int begin, int end) const {
+  if (values.depth() != CV_32F) return false;
+  RangeCheck check;
+  for (int y = begin; y < end; ++y) check.add(values.ptr<float>(y), values.cols * values.channels());
+  return check.bad();
+}
+
+std::uint32_t ClassEvidence::classMaskAcross(const PixelTriple& pixels, float threshold, float* best) const {
+  CV_DbgAssert(classes <= ClassTable::kMaxClasses);
   switch (form) {
     case ClassEvidenceForm::kProbabilities:
       if (values.depth() == CV_32F) {
-        std::memcpy(out, values.ptr<float>(y) + x * classes, sizeof(float) * static_cast<std::size_t>(classes));
+        const float* in[] = {valuesAt<float>(values, pixels[0]), valuesAt<float>(values, pixels[1]),
+                             valuesAt<float>(values, pixels[2])};
+        return classMask(in, pixels.size(), classes, threshold, best);
       } else {
-        const std::uint8_t* in = values.ptr<std::uint8_t>(y) + x * classes;
-        for (int c = 0; c < classes; ++c) out[c] = in[c] * (1.0f / 255.0f);
+        // Compared as bytes: / 255 keeps their order, so only the threshold and the result convert.
+        const std::uint8_t* in[] = {valuesAt<std::uint8_t>(values, pixels[0]), valuesAt<std::uint8_t>(values, pixels[1]),
+                                    valuesAt<std::uint8_t>(values, pixels[2])};
+        std::uint8_t top = 0;
+        const std::uint32_t mask = classMask(in, pixels.size(), classes, byteThreshold(threshold), &top);
+        *best = top * (1.0f / 255.0f);
+        return mask;
       }
-      return;
     case ClassEvidenceForm::kLabels: {
-      std::fill(out, out + classes, 0.0f);
-      const std::uint8_t* in = values.ptr<std::uint8_t>(y) + x * values.channels();
-      if (in[0] < classes) out[in[0]] = values.channels() == 2 ? in[1] * (1.0f / 255.0f) : 1.0f;
-      return;
+      float maximum[ClassTable::kMaxClasses];
+      std::fill(maximum, maximum + classes, 0.0f);
+      for (const cv::Point& p : pixels) {
+        const std::uint8_t* in = valuesAt<std::uint8_t>(values, p);
+        if (in[0] < classes) maximum[in[0]] = std::max(maximum[in[0]], values.channels() == 2 ? in[1] * (1.0f / 255.0f) : 1.0f);
+      }
+      const float* in[] = {maximum};
+      return classMaskScalar(in, 1, classes, threshold, best);
     }
     case ClassEvidenceForm::kBitmask: {
-      const std::uint8_t* in = values.ptr<std::uint8_t>(y) + 4 * x;
-      const std::uint32_t bits = in[0] | (in[1] << 8) | (in[2] << 16);
-      for (int c = 0; c < classes; ++c) out[c] = (bits >> c) & 1u ? 1.0f : 0.0f;
-      return;
+      std::uint32_t bits = 0;  // values are 0 or 1: their maximum is the union of the bits
+      for (const cv::Point& p : pixels) {
+        const std::uint8_t* in = valuesAt<std::uint8_t>(values, p);
+        bits |= in[0] | (in[1] << 8) | (in[2] << 16);
+      }
+      bits &= (1u << classes) - 1u;
+      *best = bits ? 1.0f : 0.0f;
+      return 1.0f >= threshold ? bits : bits & (~bits + 1u);  // else only the first class
     }
+  }
+  return 0u;
+}
+
+void ClassEvidence::prefetch(const PixelTriple& pixels) const {
+  constexpr std::size_t kCacheLine = 64;
+  const std::size_t size = values.elemSize();
+  for (const cv::Point& p : pixels) {
+    const std::uint8_t* first = values.ptr<std::uint8_t>(p.y) + p.x * size;
+    for (std::size_t offset = 0; offset < size; offset += kCacheLine) __builtin_prefetch(first + offset);
+    __builtin_prefetch(first + size - 1);  // the last line, when the values straddle one more
   }
 }
 
@@ -195,11 +266,15 @@ cv::Mat ClassEvidence::edgeProbability(std::size_t* invalid) const {
     cv::Mat strength;
     cv::extractChannel(values, strength, 3);
     strength.convertTo(maximum, CV_32F, 1.0 / 255.0);
-  } else if (values.depth() == CV_32F) {
-    if (channelMaximumFloat(values, &maximum) && invalid) *invalid = countInvalid(values);
-  } else {
-    channelMaximumByte(values, &maximum);
+    return maximum;
   }
+  RangeCheck check;  // of float values, in the same pass
+  for (int y = 0; y < values.rows; ++y) {
+    float* out = maximum.ptr<float>(y);
+    if (values.depth() == CV_8U) channelMaximumRow(values.ptr<std::uint8_t>(y), values.cols, values.channels(), 1.0f / 255.0f, out, &check);
+    else channelMaximumRow(values.ptr<float>(y), values.cols, values.channels(), 1.0f, out, &check);
+  }
+  if (check.bad() && invalid) *invalid = countInvalid(values);
   return maximum;
 }
 

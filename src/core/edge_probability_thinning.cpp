@@ -9,14 +9,37 @@
 namespace semantic_edge_vo {
 namespace {
 
+/// Bilinear interpolation at (x, y) >= 0 (inside the border, so truncation floors).
 float bilinear(const cv::Mat& image, float x, float y) {
-  const int x0 = static_cast<int>(std::floor(x));
-  const int y0 = static_cast<int>(std::floor(y));
+  const int x0 = static_cast<int>(x);
+  const int y0 = static_cast<int>(y);
   const float ax = x - static_cast<float>(x0);
   const float ay = y - static_cast<float>(y0);
   const float* row0 = image.ptr<float>(y0);
   const float* row1 = image.ptr<float>(y0 + 1);
   return (1 - ay) * ((1 - ax) * row0[x0] + ax * row0[x0 + 1]) + ay * ((1 - ax) * row1[x0] + ax * row1[x0 + 1]);
+}
+
+/// Unit eigenvector of the smaller eigenvalue of the symmetric matrix [[a, b], [b, c]], the direction
+/// 0.5 * atan2(2b, a - c) + pi/2 (so ny >= 0), in closed form instead of atan2, cos and sin.
+void minorEigenvector(float a, float b, float c, float* nx, float* ny) {
+  const float d = a - c, r = std::sqrt(d * d + 4.0f * b * b);
+  // (b, lambda - a) and (lambda - c, b) are both eigenvectors of lambda = (a + c - r) / 2; the longer
+  // one is well conditioned.
+  float x = b, y = -0.5f * (d + r);
+  if (d < 0.0f) {
+    x = 0.5f * (d - r);
+    y = b;
+  }
+  const float norm = std::sqrt(x * x + y * y);
+  if (norm == 0.0f) {  // isotropic: any direction does; atan2(0, 0) = 0 gave this one
+    *nx = 0.0f;
+    *ny = 1.0f;
+    return;
+  }
+  const float scale = (y < 0.0f || (y == 0.0f && x > 0.0f)) ? -1.0f / norm : 1.0f / norm;
+  *nx = x * scale;
+  *ny = y * scale;
 }
 
 }  // namespace
@@ -51,8 +74,8 @@ EdgeSet thinEdgeProbability(const cv::Mat& probability, const cv::Mat& gray, con
       const float dxx = s[x + 1] - 2.0f * s[x] + s[x - 1];
       const float dyy = down[x] - 2.0f * s[x] + up[x];
       const float dxy = 0.25f * (down[x + 1] - down[x - 1] - up[x + 1] + up[x - 1]);
-      const float angle = 0.5f * std::atan2(2.0f * dxy, dxx - dyy) + static_cast<float>(M_PI / 2);  // minor axis
-      float nx = std::cos(angle), ny = std::sin(angle);
+      float nx, ny;
+      minorEigenvector(dxx, dxy, dyy, &nx, &ny);
       const float centre = s[x];
       const float before = bilinear(smoothed, x - nx, y - ny);
       const float after = bilinear(smoothed, x + nx, y + ny);

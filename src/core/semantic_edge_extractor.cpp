@@ -1,42 +1,58 @@
 #include "semantic_edge_vo/semantic_edge_extractor.h"
 
 #include <algorithm>
-#include <array>
-#include <cmath>
 #include <sstream>
 
-#include "semantic_edge_vo/class_table.h"
 
 namespace semantic_edge_vo {
 namespace {
 
-using ClassValues = std::array<float, ClassTable::kMaxClasses>;
-
-/// Per-class maximum of the evidence at the pixels nearest to (u, v) and to (u, v) +- distance * n.
-void maximumAcross(const ClassEvidence& classes, float u, float v, float nx, float ny, float distance,
-                   ClassValues* maximum) {
-  ClassValues sample;
-  const int c = classes.classes;
-  std::fill(maximum->begin(), maximum->begin() + c, 0.0f);
-  for (const float side : {-distance, 0.0f, distance}) {
-    const int x = std::clamp(static_cast<int>(std::lround(u + side * nx)), 0, classes.values.cols - 1);
-    const int y = std::clamp(static_cast<int>(std::lround(v + side * ny)), 0, classes.values.rows - 1);
-    classes.probabilitiesAt(x, y, sample.data());
-    for (int k = 0; k < c; ++k) (*maximum)[static_cast<std::size_t>(k)] = std::max((*maximum)[static_cast<std::size_t>(k)], sample[static_cast<std::size_t>(k)]);
-  }
+/// Nearest pixel index to a coordinate, clamped to [0, size).
+inline int nearestPixel(float coordinate, int size) {
+  return std::min(nearestPixelIndex(std::max(coordinate, 0.0f)), size - 1);
 }
 
-/// The most probable class plus every class at or above the threshold; 0 without any evidence.
-/// `best` receives the highest value.
-std::uint32_t classMask(const ClassValues& values, int classes, float threshold, float* best) {
-  const auto begin = values.begin(), end = values.begin() + classes;
-  const auto top = std::max_element(begin, end);
-  *best = *top;
-  if (*top <= 0.0f) return 0u;
-  std::uint32_t mask = 1u << (top - begin);
-  for (int k = 0; k < classes; ++k)
-    if (values[static_cast<std::size_t>(k)] >= threshold) mask |= 1u << k;
-  return mask;
+/// The pixels nearest to edge i's position and to it -+ distance along its normal.
+PixelTriple pixelsAcross(const EdgeSet& edges, std::size_t i, float distance, cv::Size size) {
+  PixelTriple pixels;
+  for (int k = 0; k < 3; ++k) {
+    const float side = static_cast<float>(k - 1) * distance;
+    pixels[static_cast<std::size_t>(k)] = {nearestPixel(edges.u[i] + side * edges.normal_x[i], size.width),
+                                            nearestPixel(edges.v[i] + side * edges.normal_y[i], size.height)};
+  }
+  return pixels;
+}
+
+/// Calls visit(i, mask, best) for every edge i in order, with the class mask of the evidence at its
+/// pixelsAcross() and the highest value. The look-ups are scattered over up to 35 MB: the values of
+/// the edge kFetchAhead further on are requested in advance, so that several memory fetches overlap
+/// instead of each stalling the loop. With `check`, every row of the values is also checked for
+/// invalid probabilities (ClassEvidence::invalidInRows), a band at a time just ahead of the edges'
+/// rows (edges come in image order), so that the values come from memory once for both; returns
+/// whether any is invalid (the masks are meaningless then).
+template <typename Visit>
+bool forEachClassMask(const ClassEvidence& classes, const EdgeSet& edges, float distance, float threshold, bool check,
+                      Visit visit) {
+  constexpr std::size_t kFetchAhead = 8;
+  constexpr int kBandRows = 8;
+  const cv::Size size = classes.values.size();
+  const int reach = static_cast<int>(distance) + 2;  // rows below an edge's own that its look-ups may touch
+  int checked = check ? 0 : size.height;             // rows [0, checked) are checked
+  bool invalid = false;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const std::size_t ahead = std::min(i + kFetchAhead, edges.size() - 1);
+    const int needed = std::min(size.height, static_cast<int>(edges.v[ahead]) + reach);
+    if (needed > checked) {
+      const int band_end = std::min(size.height, needed + kBandRows);
+      invalid |= classes.invalidInRows(checked, band_end);
+      checked = band_end;
+    }
+    if (ahead > i) classes.prefetch(pixelsAcross(edges, ahead, distance, size));
+    float best = 0.0f;
+    const std::uint32_t mask = classes.classMaskAcross(pixelsAcross(edges, i, distance, size), threshold, &best);
+    visit(i, mask, best);
+  }
+  return classes.invalidInRows(checked, size.height) || invalid;
 }
 
 ExtractionError invalidProbabilities(std::size_t count, const char* what) {
@@ -88,9 +104,8 @@ ExtractionError SemanticEdgeExtractor::checkInputs(const cv::Mat& gray, const Cl
   ExtractionError error;
   error.reason = classes.checkLayout(gray.size(), &error.detail);
   if (error) return error;
-  if (!fused) return {};  // semantic_edges checks the values in its pass over them (extract)
-  if (const std::size_t invalid = classes.invalidValueCount()) return invalidProbabilities(invalid, "class");
-  if (edge_probability.empty()) return {};
+  // The class values are checked in extract's pass over them (the edge map's here: it is small).
+  if (!fused || edge_probability.empty()) return {};
   if (edge_probability.type() != CV_32FC1 && edge_probability.type() != CV_8UC1)
     return {"unsupported_layout", "edge probability must be one channel, 32-bit float or 8-bit"};
   if (edge_probability.size() != gray.size())
@@ -118,7 +133,10 @@ ExtractionError SemanticEdgeExtractor::extract(const cv::Mat& gray, const ClassE
       if (probability.depth() == CV_8U) edge_probability.convertTo(probability, CV_32F, 1.0 / 255.0);
       *edges = thinEdgeProbability(probability, gray, options_.thinning);
     }
-    assignFusedClasses(classes, edges);
+    if (!assignFusedClasses(classes, edges)) {
+      *edges = EdgeSet();
+      return invalidProbabilities(classes.invalidValueCount(), "class");
+    }
   } else {
     std::size_t invalid = 0;
     const cv::Mat probability = classes.edgeProbability(&invalid);
@@ -129,38 +147,31 @@ ExtractionError SemanticEdgeExtractor::extract(const cv::Mat& gray, const ClassE
   return {};
 }
 
-void SemanticEdgeExtractor::assignFusedClasses(const ClassEvidence& classes, EdgeSet* edges) const {
-  ClassValues maximum;
-  const auto distance = static_cast<float>(options_.side_distance);
-  const auto threshold = static_cast<float>(options_.class_threshold);
+bool SemanticEdgeExtractor::assignFusedClasses(const ClassEvidence& classes, EdgeSet* edges) const {
   // Edges without any class evidence (unlabeled pixels, all probabilities 0) would get strength 0
-  // and no class: they are dropped, keeping the order of the others.
+  // and no class: they are dropped, keeping the order of the others (kept <= i: in place).
   std::size_t kept = 0;
-  for (std::size_t i = 0; i < edges->size(); ++i) {
-    maximumAcross(classes, edges->u[i], edges->v[i], edges->normal_x[i], edges->normal_y[i], distance, &maximum);
-    float best = 0.0f;
-    const std::uint32_t mask = classMask(maximum, classes.classes, threshold, &best);
-    if (!mask) continue;
-    edges->u[kept] = edges->u[i];
-    edges->v[kept] = edges->v[i];
-    edges->normal_x[kept] = edges->normal_x[i];
-    edges->normal_y[kept] = edges->normal_y[i];
-    edges->strength[kept] = edges->strength[i] * best;
-    edges->class_mask[kept] = mask;
-    ++kept;
-  }
+  const bool invalid = forEachClassMask(
+      classes, *edges, static_cast<float>(options_.side_distance), static_cast<float>(options_.class_threshold), true,
+      [&](std::size_t i, std::uint32_t mask, float best) {
+        if (!mask) return;
+        edges->u[kept] = edges->u[i];
+        edges->v[kept] = edges->v[i];
+        edges->normal_x[kept] = edges->normal_x[i];
+        edges->normal_y[kept] = edges->normal_y[i];
+        edges->strength[kept] = edges->strength[i] * best;
+        edges->class_mask[kept] = mask;
+        ++kept;
+      });
   for (auto* values : {&edges->u, &edges->v, &edges->normal_x, &edges->normal_y, &edges->strength}) values->resize(kept);
   edges->class_mask.resize(kept);
+  return !invalid;
 }
 
 void SemanticEdgeExtractor::assignEdgeClasses(const ClassEvidence& classes, EdgeSet* edges) const {
-  ClassValues maximum;
-  const auto threshold = static_cast<float>(options_.class_threshold);
-  for (std::size_t i = 0; i < edges->size(); ++i) {
-    maximumAcross(classes, edges->u[i], edges->v[i], edges->normal_x[i], edges->normal_y[i], 1.0f, &maximum);
-    float best = 0.0f;
-    edges->class_mask[i] = classMask(maximum, classes.classes, threshold, &best);
-  }
+  // Checked already, by edgeProbability().
+  forEachClassMask(classes, *edges, 1.0f, static_cast<float>(options_.class_threshold), false,
+                   [&](std::size_t i, std::uint32_t mask, float) { edges->class_mask[i] = mask; });
 }
 
 }  // namespace semantic_edge_vo
