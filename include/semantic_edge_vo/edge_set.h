@@ -22,7 +22,15 @@ struct EdgeSet {
 
   std::size_t size() const { return u.size(); }
   void reserve(std::size_t n);
-  void push_back(float pu, float pv, float nx, float ny, float s, std::uint32_t mask);
+  /// Inline: detectors call it once per edge pixel.
+  void push_back(float pu, float pv, float nx, float ny, float s, std::uint32_t mask) {
+    u.push_back(pu);
+    v.push_back(pv);
+    normal_x.push_back(nx);
+    normal_y.push_back(ny);
+    strength.push_back(s);
+    class_mask.push_back(mask);
+  }
   EdgeSetView view() const;
 };
 

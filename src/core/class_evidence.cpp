@@ -226,14 +226,22 @@ std::uint32_t ClassEvidence::classMaskAcross(const PixelTriple& pixels, float th
         return mask;
       }
     case ClassEvidenceForm::kLabels: {
-      float maximum[ClassTable::kMaxClasses];
-      std::fill(maximum, maximum + classes, 0.0f);
+      // At most three labelled classes, the others are 0: their maxima directly, the lowest class
+      // winning ties as in a scan over classes.
+      std::uint32_t mask = 0;
+      int top_class = classes;
+      *best = 0.0f;
       for (const cv::Point& p : pixels) {
         const std::uint8_t* in = valuesAt<std::uint8_t>(values, p);
-        if (in[0] < classes) maximum[in[0]] = std::max(maximum[in[0]], values.channels() == 2 ? in[1] * (1.0f / 255.0f) : 1.0f);
+        if (in[0] >= classes) continue;
+        const float value = values.channels() == 2 ? in[1] * (1.0f / 255.0f) : 1.0f;
+        if (value >= threshold) mask |= 1u << in[0];
+        if (value > *best || (value == *best && in[0] < top_class)) {
+          *best = value;
+          top_class = in[0];
+        }
       }
-      const float* in[] = {maximum};
-      return classMaskScalar(in, 1, classes, threshold, best);
+      return *best > 0.0f ? mask | 1u << top_class : 0u;
     }
     case ClassEvidenceForm::kBitmask: {
       std::uint32_t bits = 0;  // values are 0 or 1: their maximum is the union of the bits

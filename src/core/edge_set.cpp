@@ -11,15 +11,6 @@ void EdgeSet::reserve(std::size_t n) {
   class_mask.reserve(n);
 }
 
-void EdgeSet::push_back(float pu, float pv, float nx, float ny, float s, std::uint32_t mask) {
-  u.push_back(pu);
-  v.push_back(pv);
-  normal_x.push_back(nx);
-  normal_y.push_back(ny);
-  strength.push_back(s);
-  class_mask.push_back(mask);
-}
-
 EdgeSetView EdgeSet::view() const { return {u, v, normal_x, normal_y, strength, class_mask}; }
 
 bool EdgeSetView::consistent() const {
