@@ -40,9 +40,10 @@ struct ClassEvidence {
   bool invalidInRows(int begin, int end) const;
 
   /// Class mask of the per-class maximum of the probabilities (or edge probabilities) at the pixels:
-  /// the most probable class (the first on ties) plus every class reaching `threshold`; 0 when every
-  /// value is 0. `best` receives the highest value. kLabels: the confidence for the labelled class,
-  /// 0 for the others; kBitmask: 1 for set bits. At most ClassTable::kMaxClasses classes.
+  /// the most probable class (the first on ties) plus every class reaching `threshold` (in (0, 1]);
+  /// 0 when every value is 0. `best` receives the highest value. kLabels: the confidence for the
+  /// labelled class, 0 for the others; kBitmask: 1 for set bits. At most ClassTable::kMaxClasses
+  /// classes.
   std::uint32_t classMaskAcross(const PixelTriple& pixels, float threshold, float* best) const;
   /// Asks the memory for the values at the pixels, so that a later classMaskAcross() of them need
   /// not wait for them (a hint: reads nothing, changes nothing).

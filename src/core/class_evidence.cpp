@@ -1,6 +1,7 @@
 #include "semantic_edge_vo/class_evidence.h"
 
 #include <algorithm>
+#include <array>
 #include <sstream>
 
 #include <opencv2/core.hpp>
@@ -79,16 +80,28 @@ void channelMaximumRow(const T* in, int cols, int c, float scale, float* out, Ra
 inline cv::v_float32x4 broadcast(float value) { return cv::v_setall_f32(value); }
 inline cv::v_uint8x16 broadcast(std::uint8_t value) { return cv::v_setall_u8(value); }
 
-/// Class mask of the per-class maximum of C values at `count` places: the most probable
-/// class (the first one on ties) plus every class reaching `threshold`; 0 when all are 0.
+/// The C values of each of three pixels.
 template <typename T>
-std::uint32_t classMaskScalar(const T* const* in, std::size_t count, int c, T threshold, T* best) {
+using Triple = std::array<const T*, 3>;
+
+/// Where the values of each pixel start.
+template <typename T>
+Triple<T> valuesAt(const cv::Mat& values, const PixelTriple& pixels) {
+  Triple<T> in;
+  for (std::size_t i = 0; i < pixels.size(); ++i) in[i] = values.ptr<T>(pixels[i].y) + pixels[i].x * values.channels();
+  return in;
+}
+
+/// Class mask of the per-class maximum of C values over three pixels: the most probable class (the
+/// first one on ties) plus every class reaching `threshold`; 0 when all are 0.
+template <typename T>
+std::uint32_t classMaskScalar(const Triple<T>& in, int c, T threshold, T* best) {
   std::uint32_t mask = 0;
   int top_class = 0;
   T top = 0;
   for (int k = 0; k < c; ++k) {
     T m = 0;
-    for (std::size_t i = 0; i < count; ++i) m = std::max(m, in[i][k]);
+    for (const T* pixel : in) m = std::max(m, pixel[k]);
     if (m > top) {
       top = m;
       top_class = k;
@@ -102,17 +115,16 @@ std::uint32_t classMaskScalar(const T* const* in, std::size_t count, int c, T th
 /// classMaskScalar() a register of classes at a time (the last register overlaps the one before
 /// when C is not a multiple of its lanes; maxima and mask bits come out the same twice).
 template <typename T>
-std::uint32_t classMask(const T* const* in, std::size_t count, int c, T threshold, T* best) {
+std::uint32_t classMask(const Triple<T>& in, int c, T threshold, T* best) {
   using Vector = decltype(cv::v_load(in[0]));
   constexpr int kLanes = Vector::nlanes;
-  if (c < kLanes) return classMaskScalar(in, count, c, threshold, best);
+  if (c < kLanes) return classMaskScalar(in, c, threshold, best);
   T maximum[ClassTable::kMaxClasses];
   std::uint32_t mask = 0;
   Vector top = broadcast(T(0));
   for (int k = 0; k < c; k += kLanes) {
     const int at = std::min(k, c - kLanes);
-    Vector m = cv::v_load(in[0] + at);
-    for (std::size_t i = 1; i < count; ++i) m = cv::v_max(m, cv::v_load(in[i] + at));
+    const Vector m = cv::v_max(cv::v_load(in[0] + at), cv::v_max(cv::v_load(in[1] + at), cv::v_load(in[2] + at)));
     cv::v_store(maximum + at, m);
     top = cv::v_max(top, m);
     mask |= static_cast<std::uint32_t>(cv::v_signmask(m >= broadcast(threshold))) << at;
@@ -128,12 +140,6 @@ std::uint8_t byteThreshold(float threshold) {
   while (b > 0 && static_cast<float>(b - 1) * (1.0f / 255.0f) >= threshold) --b;
   while (b < 255 && static_cast<float>(b) * (1.0f / 255.0f) < threshold) ++b;
   return static_cast<std::uint8_t>(b);
-}
-
-/// Where the values of pixel p start.
-template <typename T>
-const T* valuesAt(const cv::Mat& values, const cv::Point& p) {
-  return values.ptr<T>(p.y) + p.x * values.channels();
 }
 
 }  // namespace
@@ -211,28 +217,21 @@ bool ClassEvidence::invalidInRows(int begin, int end) const {
 std::uint32_t ClassEvidence::classMaskAcross(const PixelTriple& pixels, float threshold, float* best) const {
   CV_DbgAssert(classes <= ClassTable::kMaxClasses);
   switch (form) {
-    case ClassEvidenceForm::kProbabilities:
-      if (values.depth() == CV_32F) {
-        const float* in[] = {valuesAt<float>(values, pixels[0]), valuesAt<float>(values, pixels[1]),
-                             valuesAt<float>(values, pixels[2])};
-        return classMask(in, pixels.size(), classes, threshold, best);
-      } else {
-        // Compared as bytes: / 255 keeps their order, so only the threshold and the result convert.
-        const std::uint8_t* in[] = {valuesAt<std::uint8_t>(values, pixels[0]), valuesAt<std::uint8_t>(values, pixels[1]),
-                                    valuesAt<std::uint8_t>(values, pixels[2])};
-        std::uint8_t top = 0;
-        const std::uint32_t mask = classMask(in, pixels.size(), classes, byteThreshold(threshold), &top);
-        *best = top * (1.0f / 255.0f);
-        return mask;
-      }
+    case ClassEvidenceForm::kProbabilities: {
+      if (values.depth() == CV_32F) return classMask(valuesAt<float>(values, pixels), classes, threshold, best);
+      // Compared as bytes: / 255 keeps their order, so only the threshold and the result convert.
+      std::uint8_t top = 0;
+      const std::uint32_t mask = classMask(valuesAt<std::uint8_t>(values, pixels), classes, byteThreshold(threshold), &top);
+      *best = top * (1.0f / 255.0f);
+      return mask;
+    }
     case ClassEvidenceForm::kLabels: {
       // At most three labelled classes, the others are 0: their maxima directly, the lowest class
       // winning ties as in a scan over classes.
       std::uint32_t mask = 0;
       int top_class = classes;
       *best = 0.0f;
-      for (const cv::Point& p : pixels) {
-        const std::uint8_t* in = valuesAt<std::uint8_t>(values, p);
+      for (const std::uint8_t* in : valuesAt<std::uint8_t>(values, pixels)) {
         if (in[0] >= classes) continue;
         const float value = values.channels() == 2 ? in[1] * (1.0f / 255.0f) : 1.0f;
         if (value >= threshold) mask |= 1u << in[0];
@@ -245,13 +244,10 @@ std::uint32_t ClassEvidence::classMaskAcross(const PixelTriple& pixels, float th
     }
     case ClassEvidenceForm::kBitmask: {
       std::uint32_t bits = 0;  // values are 0 or 1: their maximum is the union of the bits
-      for (const cv::Point& p : pixels) {
-        const std::uint8_t* in = valuesAt<std::uint8_t>(values, p);
-        bits |= in[0] | (in[1] << 8) | (in[2] << 16);
-      }
+      for (const std::uint8_t* in : valuesAt<std::uint8_t>(values, pixels)) bits |= in[0] | (in[1] << 8) | (in[2] << 16);
       bits &= (1u << classes) - 1u;
       *best = bits ? 1.0f : 0.0f;
-      return 1.0f >= threshold ? bits : bits & (~bits + 1u);  // else only the first class
+      return bits;  // every set class reaches any threshold <= 1
     }
   }
   return 0u;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <sstream>
 
-
 namespace semantic_edge_vo {
 namespace {
 
@@ -36,7 +35,7 @@ bool forEachClassMask(const ClassEvidence& classes, const EdgeSet& edges, float 
   constexpr std::size_t kFetchAhead = 8;
   constexpr int kBandRows = 8;
   const cv::Size size = classes.values.size();
-  const int reach = static_cast<int>(distance) + 2;  // rows below an edge's own that its look-ups may touch
+  const int reach = static_cast<int>(distance) + 3;  // past an edge's row, the end of the rows its look-ups read
   int checked = check ? 0 : size.height;             // rows [0, checked) are checked
   bool invalid = false;
   for (std::size_t i = 0; i < edges.size(); ++i) {
