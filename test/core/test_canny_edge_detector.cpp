@@ -45,6 +45,35 @@ TEST(CannyEdgeDetector, SubpixelPositionAndNormalOfAStepEdge) {
   }
 }
 
+TEST(CannyEdgeDetector, FindsTheEdgePixelsOfOpenCvsCanny) {
+  // Our non-maximum suppression and hysteresis replace cv::Canny's (with L2 magnitudes): the same
+  // pixels, inside the border, on a scene with all edge directions and noise.
+  cv::Mat noise(240, 320, CV_32F), gray;
+  cv::randn(noise, 0.0, 25.0);
+  cv::Mat pattern;
+  renderTestPattern(5, 320, 240).convertTo(pattern, CV_32F);
+  cv::Mat(pattern + noise).convertTo(gray, CV_8U);
+  const CannyOptions options;
+  cv::Mat smoothed, dx, dy, expected;
+  cv::GaussianBlur(gray, smoothed, cv::Size(0, 0), options.blur_sigma);
+  cv::Sobel(smoothed, dx, CV_16S, 1, 0, 3);
+  cv::Sobel(smoothed, dy, CV_16S, 0, 1, 3);
+  cv::Canny(dx, dy, expected, options.low_threshold, options.high_threshold, /*L2gradient=*/true);
+  const cv::Rect inner(options.border, options.border, gray.cols - 2 * options.border, gray.rows - 2 * options.border);
+  const EdgeSet edges = CannyEdgeDetector(options).detect(gray);
+  EXPECT_GT(edges.size(), 1000u);
+  EXPECT_EQ(edges.size(), static_cast<std::size_t>(cv::countNonZero(expected(inner))));
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    // Each edge lies within half a pixel along its normal of a pixel cv::Canny marks.
+    const float offset_u = 0.5f * edges.normal_x[i], offset_v = 0.5f * edges.normal_y[i];
+    bool marked = false;
+    for (const float t : {-1.0f, 0.0f, 1.0f})
+      marked = marked || expected.at<std::uint8_t>(static_cast<int>(std::lround(edges.v[i] + t * offset_v)),
+                                                  static_cast<int>(std::lround(edges.u[i] + t * offset_u)));
+    EXPECT_TRUE(marked) << "edge " << i << " at " << edges.u[i] << ", " << edges.v[i];
+  }
+}
+
 TEST(PointSampler, SpreadsEdgesAndAddsSupportWhereEdgesAreScarce) {
   // The test pattern's flat shapes plus smooth texture, so that supportive pixels exist off the edges.
   cv::Mat texture(360, 640, CV_32F);
