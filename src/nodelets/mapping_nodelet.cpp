@@ -73,7 +73,7 @@ class MappingNodelet : public nodelet::Nodelet {
     tracer_.init(node, private_node, getName());
     cloud_publisher_ = node.advertise<sensor_msgs::PointCloud2>("semantic_edge_map", 1, /*latch=*/true);
     path_publisher_ = node.advertise<nav_msgs::Path>("path", 1);
-    tracked_subscriber_ = node.subscribe("tracked_frame", 10, &MappingNodelet::onTrackedFrame, this);
+    tracked_subscriber_ = node.subscribe("tracked_frame", 100, &MappingNodelet::onTrackedFrame, this);  // late poses come in bursts
     map_subscriber_ = node.subscribe("keyframe_map", 2, &MappingNodelet::onKeyframeMap, this);
     worker_ = std::thread(&MappingNodelet::run, this);
   }

@@ -51,9 +51,12 @@ class TrackingNodelet : public nodelet::Nodelet {
     rejections_ = std::make_unique<InputRejections>(getName());
     extrinsic_ = std::make_unique<CameraExtrinsic>(base_frame_, 0.0);
     tracer_.init(node, getPrivateNodeHandle(), getName());
-    odometry_publisher_ = node.advertise<nav_msgs::Odometry>("odometry", 10);
-    status_publisher_ = node.advertise<TrackingStatus>("tracking_status", 10);
-    tracked_publisher_ = node.advertise<TrackedFrame>("tracked_frame", 10);
+    // The initialisation releases the poses of every frame that waited for it at once (up to
+    // initializer/max_frames + 1): the queues hold such a burst several times over.
+    const std::uint32_t burst = static_cast<std::uint32_t>(4 * (options_.initializer.max_frames + 1));
+    odometry_publisher_ = node.advertise<nav_msgs::Odometry>("odometry", burst);
+    status_publisher_ = node.advertise<TrackingStatus>("tracking_status", burst);
+    tracked_publisher_ = node.advertise<TrackedFrame>("tracked_frame", burst);
     map_publisher_ = node.advertise<KeyframeMap>("keyframe_map", 2, /*latch=*/true);
     // Deep enough queues to absorb a slow frame (a keyframe) without dropping the next ones.
     frame_subscriber_.subscribe(node, "edge_frame", 20);
