@@ -8,15 +8,19 @@
 namespace semantic_edge_vo {
 
 struct WindowOptimizerOptions {
-  int keyframes = 5;               ///< newest keyframes optimised together (the oldest of them is held fixed)
-  int max_iterations = 3;          ///< Levenberg-Marquardt iterations per solve
-  int point_stride = 4;            ///< every n-th point of each host keyframe takes part
+  int keyframes = 7;               ///< newest keyframes optimised together (the oldest of them is held fixed)
+  int max_iterations = 10;         ///< Levenberg-Marquardt iterations per solve
+  int point_stride = 2;            ///< every n-th point of each host keyframe takes part
   double photometric_sigma = 4.0;  ///< gray levels / px (gradient magnitude)
   double photometric_huber = 9.0;  ///< gray levels / px
   double edge_sigma = 1.0;         ///< px
   double edge_huber = 1.5;         ///< px
   double edge_weight = 0.5;        ///< mapping weighs edges less than tracking (paper III-C)
   double edge_radius = 3.0;        ///< an edge point is associated with an edge of a shared class this near, px
+  /// Sigma of each inverse-depth prior in units of the point's filtered sigma. The filter's depths
+  /// come from one chain of tracked poses and inherit its errors (a yaw error leaves a left-right
+  /// depth gradient that feeds the next yaw error); a loose prior lets the window correct them.
+  double depth_prior_scale = 100.0;
 
   std::string validate() const;
 };

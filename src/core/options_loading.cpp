@@ -56,6 +56,7 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("window_optimizer/edge_huber", &window.edge_huber, "px");
   loader->load("window_optimizer/edge_weight", &window.edge_weight, "");
   loader->load("window_optimizer/edge_radius", &window.edge_radius, "px");
+  loader->load("window_optimizer/depth_prior_scale", &window.depth_prior_scale, "filtered sigmas");
   return options->validate();
 }
 

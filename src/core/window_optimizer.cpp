@@ -48,8 +48,9 @@ bool associate(const NearestNeighborFieldView& field, std::uint32_t class_mask, 
 std::string WindowOptimizerOptions::validate() const {
   std::ostringstream error;
   if (keyframes < 2 || max_iterations < 1 || point_stride < 1) error << "need keyframes >= 2, max_iterations >= 1, point_stride >= 1";
-  else if (!(photometric_sigma > 0 && photometric_huber > 0 && edge_sigma > 0 && edge_huber > 0 && edge_weight >= 0 && edge_radius > 0))
-    error << "sigmas, Huber thresholds and the edge radius must be > 0, edge_weight >= 0";
+  else if (!(photometric_sigma > 0 && photometric_huber > 0 && edge_sigma > 0 && edge_huber > 0 && edge_weight >= 0 && edge_radius > 0 &&
+             depth_prior_scale > 0))
+    error << "sigmas, Huber thresholds, the edge radius and depth_prior_scale must be > 0, edge_weight >= 0";
   return error.str();
 }
 
@@ -128,7 +129,8 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
       }
     }
     if (observed == 0) continue;
-    problem.AddResidualBlock(factors::InverseDepthPrior::Create(point.inverse_depth, std::sqrt(point.inverse_depth_variance)),
+    problem.AddResidualBlock(factors::InverseDepthPrior::Create(point.inverse_depth,
+                                                                       options_.depth_prior_scale * std::sqrt(point.inverse_depth_variance)),
                              nullptr, &inverse_depths[r]);
     problem.SetParameterLowerBound(&inverse_depths[r], 0, 1e-4);
     ++result.points;
