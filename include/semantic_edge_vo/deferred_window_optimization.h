@@ -24,7 +24,8 @@ class DeferredWindowOptimization {
     double waited_ms = 0.0;        ///< time finish() waited for it
   };
 
-  explicit DeferredWindowOptimization(const WindowOptimizerOptions& options) : optimizer_(options) {}
+  /// @param[in] optimizer used from the thread (optimize() is const); must outlive this object
+  explicit DeferredWindowOptimization(const WindowOptimizer& optimizer) : optimizer_(optimizer) {}
   ~DeferredWindowOptimization();
   DeferredWindowOptimization(const DeferredWindowOptimization&) = delete;
   DeferredWindowOptimization& operator=(const DeferredWindowOptimization&) = delete;
@@ -44,7 +45,7 @@ class DeferredWindowOptimization {
     double ms = 0.0;
   };
 
-  WindowOptimizer optimizer_;
+  const WindowOptimizer& optimizer_;
   std::future<Outcome> outcome_;
 };
 

@@ -81,7 +81,8 @@ class Odometry {
                                  FramePose* pose);
   /// Optimises the window at a new keyframe: in line, or started on its own thread.
   void optimizeWindow(int frame_index, FramePose* pose);
-  /// Merges the deferred optimisation; the recent poses move with the active keyframe.
+  /// Merges the deferred optimisation; the recent poses move with the active keyframe (the
+  /// caller hands the changed keyframe to the tracker).
   /// @return the correction of the active keyframe's pose (identity when it did not move)
   Eigen::Isometry3d mergeWindow(FramePose* pose);
   void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);

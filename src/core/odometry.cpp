@@ -85,13 +85,16 @@ Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera)
       camera_(camera),
       tracker_(options.tracker),
       window_optimizer_(options.window_optimizer),
-      deferred_window_(options.window_optimizer),
+      deferred_window_(window_optimizer_),
       initializer_(options.initializer, camera) {}
 
 std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFrame>& frame) {
   if (state_ != OdometryState::kTracking) return initialize(frame);
   FramePose merged;
-  if (deferred_window_.running() && frame->index >= merge_window_at_) mergeWindow(&merged);
+  if (deferred_window_.running() && frame->index >= merge_window_at_) {
+    mergeWindow(&merged);
+    tracker_.setKeyframe(active_);  // its pose and depths may have moved
+  }
   FramePose pose = track(frame);
   pose.window_ms += merged.window_ms;
   pose.mapping_ms += merged.mapping_ms;
@@ -324,7 +327,6 @@ Eigen::Isometry3d Odometry::mergeWindow(FramePose* pose) {
   const Eigen::Isometry3d& correction = moved->second;
   T_world_last_ = orthonormalized(correction * T_world_last_);
   T_world_before_ = orthonormalized(correction * T_world_before_);
-  tracker_.setKeyframe(active_);
   return correction;
 }
 
