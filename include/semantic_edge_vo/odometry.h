@@ -76,13 +76,17 @@ class Odometry {
   FramePose track(const std::shared_ptr<const OdometryFrame>& frame);
   /// Refines the active keyframe's depths with a tracked frame.
   void refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf);
-  /// Makes the frame a keyframe and returns its pose after the windowed optimisation.
+  /// Makes the frame a keyframe: it joins the window, the windowed optimisation settles its pose
+  /// (in line), then its points are triangulated. Returns its pose.
   Eigen::Isometry3d makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, Eigen::Isometry3d T_world_cam,
                                  FramePose* pose);
+  /// The keyframe's points from its frame's candidates: prior depths from the previous keyframe's
+  /// measured points, then an epipolar search against it.
+  void triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const;
   /// Optimises the window at a new keyframe: in line, or started on its own thread.
   void optimizeWindow(int frame_index, FramePose* pose);
-  /// Merges the deferred optimisation; the recent poses move with the active keyframe (the
-  /// caller hands the changed keyframe to the tracker).
+  /// Merges the deferred optimisation; the recent poses move with the active keyframe, whose points
+  /// are triangulated again from its settled pose (the caller hands it to the tracker).
   /// @return the correction of the active keyframe's pose (identity when it did not move)
   Eigen::Isometry3d mergeWindow(FramePose* pose);
   void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);

@@ -5,6 +5,7 @@
 
 #include <opencv2/core/mat.hpp>
 
+#include "semantic_edge_vo/class_evidence.h"
 #include "semantic_edge_vo/edge_set.h"
 
 namespace semantic_edge_vo {
@@ -15,8 +16,22 @@ struct PointSamplerOptions {
   int support_block_size = 32;     ///< block side for the adaptive gradient threshold, pixels
   double support_threshold_offset = 7.0;  ///< added to the block's median gradient magnitude (DSO's setting_minGradHistAdd)
   int support_min_distance = 2;    ///< supportive pixels keep this far from edge pixels, pixels
+  /// Classes whose points are not sampled when class evidence is at hand (comma-separated names;
+  /// names missing from the class table are ignored). A vehicle driving along the road moves like
+  /// static structure at a wrong depth and drags the estimate with it.
+  std::string movable_classes = "person,rider,car,truck,bus,train,motorcycle,bicycle";
 
   std::string validate() const;
+};
+
+/// Bits of the classes named in `names` (comma-separated) that `table_names` has.
+std::uint32_t classMaskOf(const std::vector<std::string>& table_names, const std::string& names);
+
+/// Leaves out points on movable classes: edges with any of `class_mask`'s classes, supportive pixels
+/// whose most probable class is one of them.
+struct MovableClassFilter {
+  std::uint32_t class_mask = 0;
+  const ClassEvidence* evidence = nullptr;  ///< the frame's class evidence (supportive pixels)
 };
 
 struct PointSample {
@@ -33,11 +48,13 @@ class PointSampler {
   explicit PointSampler(const PointSamplerOptions& options) : options_(options) {}
 
   /// @param[in] gray 8-bit image the edges come from
-  PointSample sample(const cv::Mat& gray, const EdgeSetView& edges) const;
+  /// @param[in] movable points to leave out, or nullptr (no class evidence: canny intake)
+  PointSample sample(const cv::Mat& gray, const EdgeSetView& edges, const MovableClassFilter* movable = nullptr) const;
 
  private:
   std::vector<std::uint32_t> sampleEdges(const EdgeSetView& edges, int width, int height) const;
-  void sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, int count, PointSample* sample) const;
+  void sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, int count, const MovableClassFilter* movable,
+                     PointSample* sample) const;
 
   PointSamplerOptions options_;
 };

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "semantic_edge_vo/edge_registration.h"
+#include "semantic_edge_vo/forward_motion_prior.h"
 #include "semantic_edge_vo/keyframe.h"
 
 namespace semantic_edge_vo {
@@ -20,6 +21,7 @@ struct TrackerOptions {
   double accept_inlier_ratio = 0.8;  ///< the constant-velocity guess is taken when this many residuals are inliers
   double min_inlier_ratio = 0.5;     ///< lost when fewer photometric residuals are inliers at level 0
   double min_points_in_view = 0.25;  ///< lost when fewer keyframe points project into the frame
+  ForwardMotionOptions forward_motion;  ///< prior on the direction of travel (off by default)
 
   std::string validate() const;
 };
@@ -69,10 +71,11 @@ class Tracker {
   };
   /// Cost of the level at a pose; fills the normal equations and `result`'s counts when asked.
   double evaluate(int level, const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame,
-                  const NearestNeighborFieldView* field, Normal* normal, TrackingResult* result) const;
+                  const NearestNeighborFieldView* field, const ForwardMotionPrior& prior, Normal* normal,
+                  TrackingResult* result) const;
   /// Levenberg-Marquardt at one level from `T`; returns the final cost.
   double optimizeLevel(int level, const ImagePyramid& frame, const NearestNeighborFieldView* field,
-                       Eigen::Isometry3d* T, int* iterations) const;
+                       const ForwardMotionPrior& prior, Eigen::Isometry3d* T, int* iterations) const;
 
   TrackerOptions options_;
   std::shared_ptr<const Keyframe> keyframe_;

@@ -278,12 +278,24 @@ Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFra
   keyframe->id = next_keyframe_id_++;
   keyframe->T_world_cam = T_world_cam;
   keyframe->frame = frame;
-  keyframe->points = frame->candidates;
+  keyframes_.push_back(keyframe);
+  while (static_cast<int>(keyframes_.size()) > options_.window_size) keyframes_.pop_front();
+  // The window settles the new pose against the older keyframes' points before the new points are
+  // triangulated from it: points triangulated from the tracked pose agree with its error and would
+  // pin it there (a yaw error leaves a left-right depth gradient that makes the next yaw error).
+  if (options_.optimize_window) optimizeWindow(frame->index, pose);
+  triangulatePoints(keyframe.get(), *active_);
+  setActiveKeyframe(keyframe);
+  frames_since_keyframe_ = 0;
+  return keyframe->T_world_cam;
+}
 
-  // Prior depths: the active keyframe's measured points, seen from the new keyframe.
-  const Eigen::Isometry3d T_new_old = T_world_cam.inverse() * active_->T_world_cam;
+void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const {
+  keyframe->points = keyframe->frame->candidates;
+  // Prior depths: the previous keyframe's measured points, seen from the new keyframe.
+  const Eigen::Isometry3d T_new_old = keyframe->T_world_cam.inverse() * previous.T_world_cam;
   std::vector<DepthSample> samples;
-  for (const MapPoint& point : active_->points) {
+  for (const MapPoint& point : previous.points) {
     if (!point.hasDepth()) continue;
     const Eigen::Vector3d p = T_new_old * camera_.backProject(point.u, point.v, 1.0 / point.inverse_depth);
     const Eigen::Vector2d pixel = camera_.project(p);
@@ -292,19 +304,12 @@ Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFra
   propagateDepths(samples, camera_, options_.depth_neighbour_radius, 1.0 / options_.initializer.median_depth, &keyframe->points);
   // Measure the new points at once against the previous keyframe: the widest baseline at hand.
   const Eigen::Isometry3d T_old_new = T_new_old.inverse();
-  const PyramidLevel& host = frame->pyramid->level(0);
-  const PyramidLevel& target = active_->frame->pyramid->level(0);
+  const PyramidLevel& host = keyframe->frame->pyramid->level(0);
+  const PyramidLevel& target = previous.frame->pyramid->level(0);
   DepthMeasurement measurement;
   for (MapPoint& point : keyframe->points)
-    if (searchEpipolar(point, host, target, active_->frame->fieldOrNull(), T_old_new, options_.epipolar, &measurement))
+    if (searchEpipolar(point, host, target, previous.frame->fieldOrNull(), T_old_new, options_.epipolar, &measurement))
       fuseDepth(measurement, &point);
-
-  keyframes_.push_back(keyframe);
-  while (static_cast<int>(keyframes_.size()) > options_.window_size) keyframes_.pop_front();
-  if (options_.optimize_window) optimizeWindow(frame->index, pose);
-  setActiveKeyframe(keyframe);
-  frames_since_keyframe_ = 0;
-  return keyframe->T_world_cam;
 }
 
 void Odometry::optimizeWindow(int frame_index, FramePose* pose) {
@@ -327,6 +332,9 @@ Eigen::Isometry3d Odometry::mergeWindow(FramePose* pose) {
   const Eigen::Isometry3d& correction = moved->second;
   T_world_last_ = orthonormalized(correction * T_world_last_);
   T_world_before_ = orthonormalized(correction * T_world_before_);
+  // The optimisation settled the active keyframe's pose without its points (see makeKeyframe), which
+  // were triangulated from the tracked pose meanwhile: triangulate them again from the settled one.
+  if (keyframes_.size() >= 2) triangulatePoints(active_.get(), *keyframes_[keyframes_.size() - 2]);
   return correction;
 }
 

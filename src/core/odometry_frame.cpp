@@ -42,7 +42,9 @@ std::shared_ptr<const OdometryFrame> FrameBuilder::build(int index, double time,
   EdgeSet edges;
   *error = SemanticEdgeExtractor(options_.intake).extract(gray, classes, cv::Mat(), &edges);
   if (*error) return nullptr;
-  const PointSample sample = PointSampler(options_.sampler).sample(gray, edges.view());
+  const MovableClassFilter movable{classMaskOf(class_names_, options_.sampler.movable_classes), &classes};
+  const bool semantic = options_.intake.mode != IntakeMode::kCanny;
+  const PointSample sample = PointSampler(options_.sampler).sample(gray, edges.view(), semantic ? &movable : nullptr);
 
   auto frame = std::make_shared<OdometryFrame>();
   frame->index = index;

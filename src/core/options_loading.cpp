@@ -16,6 +16,7 @@ std::string loadPointSamplerOptions(ParameterLoader* loader, PointSamplerOptions
   loader->load("sampler/support_block_size", &options->support_block_size, "px");
   loader->load("sampler/support_threshold_offset", &options->support_threshold_offset, "gray levels/px");
   loader->load("sampler/support_min_distance", &options->support_min_distance, "px");
+  loader->load("sampler/movable_classes", &options->movable_classes, "(class names, comma-separated)");
   return options->validate();
 }
 
@@ -40,6 +41,9 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("tracker/edge_weight", &tracker.edge_weight, "");
   loader->load("tracker/accept_inlier_ratio", &tracker.accept_inlier_ratio, "");
   loader->load("tracker/min_inlier_ratio", &tracker.min_inlier_ratio, "");
+  loader->load("tracker/forward_motion/sigma", &tracker.forward_motion.sigma_deg, "deg (0: off)");
+  loader->load("tracker/forward_motion/pitch", &tracker.forward_motion.pitch_deg, "deg (+: down)");
+  loader->load("tracker/forward_motion/yaw", &tracker.forward_motion.yaw_deg, "deg (+: right)");
   loader->load("initializer/min_parallax", &options->initializer.min_parallax, "image widths");
   loader->load("initializer/max_frames", &options->initializer.max_frames, "frames");
   loader->load("initializer/median_depth", &options->initializer.median_depth, "map units");

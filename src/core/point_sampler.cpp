@@ -122,11 +122,31 @@ std::string PointSamplerOptions::validate() const {
   return error.str();
 }
 
-PointSample PointSampler::sample(const cv::Mat& gray, const EdgeSetView& edges) const {
+std::uint32_t classMaskOf(const std::vector<std::string>& table_names, const std::string& names) {
+  std::uint32_t mask = 0;
+  std::stringstream list(names);
+  std::string name;
+  while (std::getline(list, name, ',')) {
+    name.erase(0, name.find_first_not_of(' '));
+    name.erase(name.find_last_not_of(' ') + 1);
+    for (std::size_t i = 0; i < table_names.size() && i < 32; ++i)
+      if (table_names[i] == name) mask |= 1u << i;
+  }
+  return mask;
+}
+
+PointSample PointSampler::sample(const cv::Mat& gray, const EdgeSetView& edges, const MovableClassFilter* movable) const {
   PointSample result;
   result.edge_indices = sampleEdges(edges, gray.cols, gray.rows);
+  if (movable && movable->class_mask) {
+    // Left out after sampling: their share goes to supportive pixels through the shortfall.
+    auto& indices = result.edge_indices;
+    indices.erase(std::remove_if(indices.begin(), indices.end(),
+                                 [&](std::uint32_t i) { return (edges.class_mask[i] & movable->class_mask) != 0; }),
+                  indices.end());
+  }
   const int shortfall = options_.max_edge_points - static_cast<int>(result.edge_indices.size());
-  sampleSupport(gray, edges, options_.min_support_points + std::max(0, shortfall), &result);
+  sampleSupport(gray, edges, options_.min_support_points + std::max(0, shortfall), movable, &result);
   return result;
 }
 
@@ -191,7 +211,7 @@ std::vector<std::uint32_t> PointSampler::sampleEdges(const EdgeSetView& edges, i
 }
 
 void PointSampler::sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, int count,
-                                 PointSample* sample) const {
+                                 const MovableClassFilter* movable, PointSample* sample) const {
   if (count <= 0) return;
   // Pixels near any edge are the edges' business; supportive pixels stay clear of them.
   cv::Mat near_edge(gray.size(), CV_8U, cv::Scalar(0));
@@ -246,6 +266,14 @@ void PointSampler::sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, 
         }
       }
     }
+  }
+  if (movable && movable->class_mask && movable->evidence) {
+    const auto on_movable = [&](const Candidate& c) {
+      float best = 0.0f;
+      const cv::Point pixel(c.x, c.y);
+      return (movable->evidence->classMaskAcross({pixel, pixel, pixel}, 1.0f, &best) & movable->class_mask) != 0;
+    };
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(), on_movable), candidates.end());
   }
   std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
     return a.edges_scarce != b.edges_scarce ? a.edges_scarce : a.margin > b.margin;

@@ -27,6 +27,8 @@ std::string TrackerOptions::validate() const {
   else if (!(min_inlier_ratio >= 0 && min_inlier_ratio <= 1 && accept_inlier_ratio >= 0 && accept_inlier_ratio <= 1 &&
              min_points_in_view >= 0 && min_points_in_view <= 1))
     error << "min_inlier_ratio and min_points_in_view must be in [0, 1]";
+  else if (!(forward_motion.sigma_deg >= 0 && std::abs(forward_motion.pitch_deg) < 90 && std::abs(forward_motion.yaw_deg) < 90))
+    error << "forward_motion: sigma must be >= 0 deg (0: off), pitch and yaw within +-90 deg";
   return error.str();
 }
 
@@ -70,7 +72,8 @@ void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
 }
 
 double Tracker::evaluate(int level, const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame,
-                         const NearestNeighborFieldView* field, Normal* normal, TrackingResult* result) const {
+                         const NearestNeighborFieldView* field, const ForwardMotionPrior& prior, Normal* normal,
+                         TrackingResult* result) const {
   const PyramidLevel& target = frame.level(level);
   const LevelReference& reference = references_[static_cast<std::size_t>(level)];
   const Eigen::Matrix3f R = T_cam_kf.linear().cast<float>();
@@ -146,13 +149,14 @@ double Tracker::evaluate(int level, const Eigen::Isometry3d& T_cam_kf, const Ima
       result->edge_rmse = edge_inliers ? std::sqrt(edge_squares / edge_inliers) * std::ldexp(1.0, level) : 0.0;
     }
   }
+  cost += prior.evaluate(T_cam_kf, normal ? &normal->H : nullptr, normal ? &normal->b : nullptr);
   return cost;
 }
 
 double Tracker::optimizeLevel(int level, const ImagePyramid& frame, const NearestNeighborFieldView* field,
-                              Eigen::Isometry3d* T, int* iterations) const {
+                              const ForwardMotionPrior& prior, Eigen::Isometry3d* T, int* iterations) const {
   Normal normal;
-  double cost = evaluate(level, *T, frame, field, &normal, nullptr);
+  double cost = evaluate(level, *T, frame, field, prior, &normal, nullptr);
   double lambda = 1e-3;
   for (int it = 0; it < options_.iterations_per_level; ++it) {
     ++*iterations;
@@ -161,7 +165,7 @@ double Tracker::optimizeLevel(int level, const ImagePyramid& frame, const Neares
     const Vector6d step = -damped.ldlt().solve(normal.b);
     const Eigen::Isometry3d candidate = orthonormalized(se3Exp(step) * *T);
     Normal candidate_normal;
-    const double candidate_cost = evaluate(level, candidate, frame, field, &candidate_normal, nullptr);
+    const double candidate_cost = evaluate(level, candidate, frame, field, prior, &candidate_normal, nullptr);
     if (candidate_cost < cost) {
       *T = candidate;
       cost = candidate_cost;
@@ -186,9 +190,13 @@ TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFi
   // cost there goes on through the finer levels, and the lower full-resolution cost of the two wins.
   const std::vector<Eigen::Isometry3d> candidates =
       guesses.empty() ? std::vector<Eigen::Isometry3d>{Eigen::Isometry3d::Identity()} : guesses;
+  // The travel the motion model predicts scales the direction prior (frame centre in the keyframe).
+  const double predicted_travel = (candidates[0].linear().transpose() * candidates[0].translation()).norm();
+  const ForwardMotionPrior prior(options_.forward_motion, predicted_travel);
   const auto refine = [&](TrackingResult* attempt, int from_level) {
-    for (int level = from_level; level >= 0; --level) optimizeLevel(level, frame, field, &attempt->T_cam_kf, &attempt->iterations);
-    return evaluate(0, attempt->T_cam_kf, frame, field, nullptr, attempt);
+    for (int level = from_level; level >= 0; --level)
+      optimizeLevel(level, frame, field, prior, &attempt->T_cam_kf, &attempt->iterations);
+    return evaluate(0, attempt->T_cam_kf, frame, field, prior, nullptr, attempt);
   };
   TrackingResult result;
   result.T_cam_kf = candidates[0];
@@ -202,7 +210,7 @@ TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFi
       TrackingResult attempt;
       attempt.T_cam_kf = candidates[g];
       attempt.guess = static_cast<int>(g);
-      const double coarse = optimizeLevel(levels - 1, frame, field, &attempt.T_cam_kf, &iterations);
+      const double coarse = optimizeLevel(levels - 1, frame, field, prior, &attempt.T_cam_kf, &iterations);
       if (coarse < best_coarse) {
         best_coarse = coarse;
         best = attempt;

@@ -10,23 +10,6 @@
 namespace semantic_edge_vo {
 namespace {
 
-struct PoseBlock {
-  std::array<double, 4> q;  ///< x, y, z, w
-  std::array<double, 3> t;
-};
-
-PoseBlock toBlock(const Eigen::Isometry3d& T) {
-  const Eigen::Quaterniond q(T.linear());
-  return {{q.x(), q.y(), q.z(), q.w()}, {T.translation().x(), T.translation().y(), T.translation().z()}};
-}
-
-Eigen::Isometry3d fromBlock(const PoseBlock& block) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Quaterniond(block.q[3], block.q[0], block.q[1], block.q[2]).normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(block.t[0], block.t[1], block.t[2]);
-  return T;
-}
-
 /// The nearest edge of a class the point has (any edge for ANNF/ONNF fields), within `radius`.
 bool associate(const NearestNeighborFieldView& field, std::uint32_t class_mask, const Eigen::Vector2d& pixel, double radius,
                FieldMatch* best) {
@@ -61,11 +44,11 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
   const std::size_t first = window.size() - count;
   result.keyframes = static_cast<int>(count);
 
-  std::vector<PoseBlock> poses;
+  std::vector<factors::PoseParameters> poses;
   std::vector<std::unique_ptr<ceres::Grid2D<float, 1>>> grids;
   std::vector<std::unique_ptr<factors::Interpolator>> interpolators;
   for (std::size_t k = first; k < window.size(); ++k) {
-    poses.push_back(toBlock(window[k]->T_world_cam));
+    poses.push_back(factors::toParameters(window[k]->T_world_cam));
     const cv::Mat& gradient = window[k]->frame->pyramid->level(0).gradient;
     CV_Assert(gradient.isContinuous());
     grids.push_back(std::make_unique<ceres::Grid2D<float, 1>>(gradient.ptr<float>(), 0, gradient.rows, 0, gradient.cols));
@@ -74,12 +57,8 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
   const PinholeCamera& camera = window[first]->frame->pyramid->level(0).camera;
 
   ceres::Problem problem;
-  for (PoseBlock& pose : poses) {
-    problem.AddParameterBlock(pose.q.data(), 4, new ceres::EigenQuaternionManifold());
-    problem.AddParameterBlock(pose.t.data(), 3);
-  }
-  problem.SetParameterBlockConstant(poses[0].q.data());
-  problem.SetParameterBlockConstant(poses[0].t.data());
+  for (factors::PoseParameters& pose : poses) problem.AddParameterBlock(pose.data(), 7, new factors::PoseManifold());
+  problem.SetParameterBlockConstant(poses[0].data());
 
   // Inverse depths live in a vector parallel to (host, point index) so that they are written back.
   struct PointRef {
@@ -109,22 +88,20 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
       if (p.z() <= 1e-3) continue;
       const Eigen::Vector2d pixel = camera.project(p);
       if (!camera.contains(pixel.x(), pixel.y(), 4.0)) continue;
-      PoseBlock& h = poses[refs[r].host];
-      PoseBlock& g = poses[t];
-      problem.AddResidualBlock(factors::PhotometricFactor::Create(ray, host_value, interpolators[t].get(), camera.fx, camera.fy,
-                                                                  camera.cx, camera.cy, options_.photometric_sigma),
-                               new ceres::HuberLoss(photometric_loss), h.q.data(), h.t.data(), g.q.data(), g.t.data(),
-                               &inverse_depths[r]);
+      double* host_pose = poses[refs[r].host].data();
+      double* target_pose = poses[t].data();
+      problem.AddResidualBlock(new factors::PhotometricFactor(ray, host_value, *interpolators[t], camera, options_.photometric_sigma),
+                               new ceres::HuberLoss(photometric_loss), host_pose, target_pose, &inverse_depths[r]);
       ++result.photometric_residuals;
       ++observed;
       FieldMatch match;
       if (point.isEdge() && options_.edge_weight > 0.0 && target.frame->has_field &&
           associate(target.frame->field, point.class_mask, pixel, options_.edge_radius, &match)) {
         problem.AddResidualBlock(
-            factors::EdgeFactor::Create(ray, Eigen::Vector2d(match.u, match.v), Eigen::Vector2d(match.normal_x, match.normal_y),
-                                        camera.fx, camera.fy, camera.cx, camera.cy, options_.edge_sigma),
-            new ceres::ScaledLoss(new ceres::HuberLoss(edge_loss), options_.edge_weight, ceres::TAKE_OWNERSHIP), h.q.data(),
-            h.t.data(), g.q.data(), g.t.data(), &inverse_depths[r]);
+            new factors::EdgeFactor(ray, Eigen::Vector2d(match.u, match.v), Eigen::Vector2d(match.normal_x, match.normal_y),
+                                    camera.fx, camera.fy, camera.cx, camera.cy, options_.edge_sigma),
+            new ceres::ScaledLoss(new ceres::HuberLoss(edge_loss), options_.edge_weight, ceres::TAKE_OWNERSHIP), host_pose,
+            target_pose, &inverse_depths[r]);
         ++result.edge_residuals;
       }
     }
@@ -149,7 +126,7 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
   result.solved = summary.IsSolutionUsable() && summary.final_cost <= summary.initial_cost;
   if (!result.solved) return result;
 
-  for (std::size_t k = 1; k < count; ++k) window[first + k]->T_world_cam = fromBlock(poses[k]);
+  for (std::size_t k = 1; k < count; ++k) window[first + k]->T_world_cam = factors::fromParameters(poses[k].data());
   for (std::size_t r = 0; r < refs.size(); ++r)
     if (problem.HasParameterBlock(&inverse_depths[r])) window[first + refs[r].host]->points[refs[r].index].inverse_depth = inverse_depths[r];
   return result;

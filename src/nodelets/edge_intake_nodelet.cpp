@@ -56,6 +56,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
       classes_ = ClassTable::singleEdgeClass();
     }
     if (error.empty()) error = loadPointSamplerOptions(&loader, &sampler_options_);
+    movable_class_mask_ = classMaskOf(classes_.names(), sampler_options_.movable_classes);
     NODELET_INFO_STREAM("parameters:" << loader.summary() << "\n  classes = " << classes_.size());
     if (error.empty()) error = parameters.error();
     if (error.empty() && queue_size < 1) error = "queue_size must be >= 1";
@@ -211,15 +212,19 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     gray_input->image.copyTo(gray);
 
     EdgeSet edges;
+    ClassEvidence evidence;  // views the class map message
     const SemanticEdgeExtractor extractor(options_);
     if (input.complete) {
-      if (!extractEdges(input, gray, extractor, &edges)) return;
+      if (!extractEdges(input, gray, extractor, &edges, &evidence)) return;
       frame->intake_mode = toString(options_.mode);
     } else {
       edges = extractor.cannyEdges(gray, classes_.size() >= 32 ? ~0u : (1u << classes_.size()) - 1u);
       frame->intake_mode = toString(IntakeMode::kCanny);
     }
-    PointSample sample = PointSampler(sampler_options_).sample(gray, edges.view());
+    // Canny edges (the mode, or the fallback) carry every class: nothing to leave out.
+    const MovableClassFilter movable{movable_class_mask_, &evidence};
+    const bool semantic = input.complete && options_.mode != IntakeMode::kCanny;
+    PointSample sample = PointSampler(sampler_options_).sample(gray, edges.view(), semantic ? &movable : nullptr);
     frame->sampled_edges = std::move(sample.edge_indices);
     frame->support_u = std::move(sample.support_u);
     frame->support_v = std::move(sample.support_v);
@@ -232,12 +237,11 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
 
   /// The edges with classes from the frame's maps (viewed in place); false when a map is refused.
   bool extractEdges(const FramePairing::Frame& input, const cv::Mat& gray, const SemanticEdgeExtractor& extractor,
-                    EdgeSet* edges) {
+                    EdgeSet* edges, ClassEvidence* evidence) {
     std::string detail;
-    ClassEvidence evidence;
     cv::Mat edge_probability;
     std::string reason;
-    if (input.classes) reason = classEvidenceFromImage(*input.classes, class_form_, classes_.size(), &evidence, &detail);
+    if (input.classes) reason = classEvidenceFromImage(*input.classes, class_form_, classes_.size(), evidence, &detail);
     if (!reason.empty()) {
       rejections_->reject("class map", reason, detail);
       return false;
@@ -247,7 +251,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
       rejections_->reject("edge map", reason, detail);
       return false;
     }
-    if (ExtractionError error = extractor.extract(gray, evidence, edge_probability, edges)) {
+    if (ExtractionError error = extractor.extract(gray, *evidence, edge_probability, edges)) {
       rejections_->reject("class map", error.reason, error.detail);
       return false;
     }
@@ -272,6 +276,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
 
   SemanticEdgeOptions options_;
   PointSamplerOptions sampler_options_;
+  std::uint32_t movable_class_mask_ = 0;  ///< sampler_options_.movable_classes in the class table
   ClassTable classes_;
   ClassEvidenceForm class_form_ = ClassEvidenceForm::kProbabilities;
   bool fallback_to_canny_ = true;

@@ -4,6 +4,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "semantic_edge_vo/canny_edge_detector.h"
+#include "semantic_edge_vo/class_table.h"
 #include "semantic_edge_vo/point_sampler.h"
 #include "semantic_edge_vo/test_pattern.h"
 
@@ -74,8 +75,8 @@ TEST(CannyEdgeDetector, FindsTheEdgePixelsOfOpenCvsCanny) {
   }
 }
 
-TEST(PointSampler, SpreadsEdgesAndAddsSupportWhereEdgesAreScarce) {
-  // The test pattern's flat shapes plus smooth texture, so that supportive pixels exist off the edges.
+/// The test pattern's flat shapes plus smooth texture, so that supportive pixels exist off the edges.
+cv::Mat texturedPattern() {
   cv::Mat texture(360, 640, CV_32F);
   cv::randn(texture, 0.0, 60.0);
   cv::GaussianBlur(texture, texture, cv::Size(0, 0), 1.2);
@@ -83,6 +84,11 @@ TEST(PointSampler, SpreadsEdgesAndAddsSupportWhereEdgesAreScarce) {
   cv::Mat pattern;
   renderTestPattern(3, 640, 360).convertTo(pattern, CV_32F);
   cv::Mat(pattern + texture).convertTo(gray, CV_8U);
+  return gray;
+}
+
+TEST(PointSampler, SpreadsEdgesAndAddsSupportWhereEdgesAreScarce) {
+  const cv::Mat gray = texturedPattern();
   const EdgeSet edges = CannyEdgeDetector(CannyOptions()).detect(gray);
   PointSamplerOptions options;
   options.max_edge_points = 500;
@@ -100,6 +106,34 @@ TEST(PointSampler, SpreadsEdgesAndAddsSupportWhereEdgesAreScarce) {
   const PointSample more = PointSampler(options).sample(gray, edges.view());
   EXPECT_EQ(more.edge_indices.size(), edges.size());
   EXPECT_GT(more.support_u.size(), sample.support_u.size());
+}
+
+TEST(PointSampler, LeavesOutMovableClasses) {
+  const cv::Mat gray = texturedPattern();
+  EdgeSet edges = CannyEdgeDetector(CannyOptions()).detect(gray);
+  // Class labels: a car on the left half, a building on the right; edges take their pixel's class.
+  const ClassTable table = ClassTable::cityscapes();
+  const int car = table.indexOf("car"), building = table.indexOf("building");
+  cv::Mat labels(gray.size(), CV_8UC1, cv::Scalar(building));
+  labels.colRange(0, 320).setTo(car);
+  for (std::size_t i = 0; i < edges.size(); ++i) edges.class_mask[i] = 1u << (edges.u[i] < 320 ? car : building);
+  const ClassEvidence evidence{ClassEvidenceForm::kLabels, labels, table.size()};
+  PointSamplerOptions options;
+  options.max_edge_points = 500;
+  options.min_support_points = 200;
+  const MovableClassFilter movable{classMaskOf(table.names(), options.movable_classes), &evidence};
+  EXPECT_EQ(classMaskOf(table.names(), " car, bus ,no_such_class"), (1u << car) | (1u << table.indexOf("bus")));
+
+  const PointSample all = PointSampler(options).sample(gray, edges.view());
+  const PointSample static_only = PointSampler(options).sample(gray, edges.view(), &movable);
+  const auto on_left = [](float u) { return u < 320.0f; };
+  int edges_left = 0;
+  for (std::uint32_t i : all.edge_indices) edges_left += on_left(edges.u[i]);
+  ASSERT_GT(edges_left, 100);  // without the filter the car has its share
+  for (std::uint32_t i : static_only.edge_indices) EXPECT_FALSE(on_left(edges.u[i])) << edges.u[i];
+  EXPECT_GT(static_only.edge_indices.size(), 100u);
+  for (float u : static_only.support_u) EXPECT_FALSE(on_left(u)) << u;
+  EXPECT_GT(static_only.support_u.size(), 50u);
 }
 
 }  // namespace

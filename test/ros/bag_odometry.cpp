@@ -10,6 +10,8 @@
 // nearly zero and is no bound.
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <map>
 #include <mutex>
 
@@ -116,9 +118,21 @@ TEST(BagOdometry, GraphGivesRunSequencesTrajectoryWithinHalfAPercentOfThePath) {
   ASSERT_EQ(stamps.size(), static_cast<std::size_t>(kFrames));
   ros::WallDuration(2.0).sleep();  // poses of frames that waited for the initialisation come late
 
-  // The offline runner on the same sequence with the same config.
-  ASSERT_TRUE(runTool("run_sequence --sequence " + dir + "/city --output " + dir + "/offline --config " SEVO_SOURCE_DIR
-                      "/config/semantic_edge_vo.yaml --quiet"));
+  // The offline runner on the same sequence with the same config, window_delay as the test launch
+  // file set it.
+  int window_delay = 0;
+  ASSERT_TRUE(ros::param::get("/tracking/window_delay", window_delay));
+  std::ifstream shipped(SEVO_SOURCE_DIR "/config/semantic_edge_vo.yaml");
+  std::stringstream config_text;
+  config_text << shipped.rdbuf();
+  const std::string shipped_delay = "window_delay: 0 ";
+  std::string config = config_text.str();
+  const std::size_t at = config.find(shipped_delay);
+  ASSERT_NE(at, std::string::npos) << "the shipped config no longer sets " << shipped_delay;
+  config.replace(at, shipped_delay.size(), "window_delay: " + std::to_string(window_delay) + " ");
+  std::ofstream(dir + "/config.yaml") << config;
+  ASSERT_TRUE(runTool("run_sequence --sequence " + dir + "/city --output " + dir + "/offline --config " + dir +
+                      "/config.yaml --quiet"));
   Trajectory offline, truth;
   ASSERT_EQ(readKittiPoses(dir + "/offline/poses_kitti.txt", &offline), "");
   ASSERT_EQ(readKittiPoses(dir + "/city/poses.txt", &truth), "");

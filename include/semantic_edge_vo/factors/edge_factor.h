@@ -1,5 +1,5 @@
 #pragma once
-#include <ceres/ceres.h>
+#include <ceres/sized_cost_function.h>
 
 #include "semantic_edge_vo/factors/pose_parameters.h"
 
@@ -8,26 +8,25 @@ namespace factors {
 
 /// Point-to-tangent residual of a host edge point against its associated edge in a target keyframe
 /// (the nearest edge of a shared class, found before the solve): n . (projection - match) / sigma,
-/// px. Parameters as PhotometricFactor.
-class EdgeFactor {
+/// px, with analytic derivatives. Parameters as PhotometricFactor.
+class EdgeFactor : public ceres::SizedCostFunction<1, 7, 7, 1> {
  public:
   EdgeFactor(const Eigen::Vector3d& host_ray, const Eigen::Vector2d& match, const Eigen::Vector2d& normal,
              double fx, double fy, double cx, double cy, double sigma)
       : host_ray_(host_ray), match_(match), normal_(normal), fx_(fx), fy_(fy), cx_(cx), cy_(cy), sigma_(sigma) {}
 
-  template <typename T>
-  bool operator()(const T* q_h, const T* t_h, const T* q_t, const T* t_t, const T* rho, T* residual) const {
-    const Eigen::Matrix<T, 3, 1> p = hostToTarget(q_h, t_h, q_t, t_t, rho[0], host_ray_);
-    if (p.z() <= T(1e-6)) return false;
-    const T du = fx_ * p.x() / p.z() + cx_ - match_.x(), dv = fy_ * p.y() / p.z() + cy_ - match_.y();
-    residual[0] = (normal_.x() * du + normal_.y() * dv) / sigma_;
+  bool Evaluate(const double* const* parameters, double* residuals, double** jacobians) const override {
+    const HostToTarget point(parameters[0], parameters[1], parameters[2][0], host_ray_);
+    if (point.P.z() <= 1e-6) return false;
+    Eigen::Matrix<double, 2, 3> d_pixel;
+    const Eigen::Vector2d pixel = project(point.P, fx_, fy_, cx_, cy_, &d_pixel);
+    residuals[0] = normal_.dot(pixel - match_) / sigma_;
+    if (!jacobians) return true;
+    const Eigen::RowVector3d d_point = normal_.transpose() * d_pixel / sigma_;
+    writePoseJacobian(d_point * point.d_host, jacobians[0]);
+    writePoseJacobian(d_point * point.d_target, jacobians[1]);
+    if (jacobians[2]) jacobians[2][0] = d_point.dot(point.d_rho);
     return true;
-  }
-
-  static ceres::CostFunction* Create(const Eigen::Vector3d& host_ray, const Eigen::Vector2d& match, const Eigen::Vector2d& normal,
-                                     double fx, double fy, double cx, double cy, double sigma) {
-    return new ceres::AutoDiffCostFunction<EdgeFactor, 1, 4, 3, 4, 3, 1>(
-        new EdgeFactor(host_ray, match, normal, fx, fy, cx, cy, sigma));
   }
 
  private:

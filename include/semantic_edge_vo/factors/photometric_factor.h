@@ -1,7 +1,8 @@
 #pragma once
-#include <ceres/ceres.h>
 #include <ceres/cubic_interpolation.h>
+#include <ceres/sized_cost_function.h>
 
+#include "semantic_edge_vo/camera.h"
 #include "semantic_edge_vo/factors/pose_parameters.h"
 
 namespace semantic_edge_vo {
@@ -10,36 +11,37 @@ namespace factors {
 using Interpolator = ceres::BiCubicInterpolator<ceres::Grid2D<float, 1>>;
 
 /// Photometric residual of a host point in a target keyframe: gradient magnitude of the target at
-/// the projection minus the host's value (paper III-C), divided by sigma. Parameters: host rotation
-/// (4) and translation (3), target rotation (4) and translation (3), inverse depth (1).
-class PhotometricFactor {
+/// the projection minus the host's value (paper III-C), divided by sigma. Bicubic samples with their
+/// exact derivatives (beyond the border the image continues flat, so a step that pushes a point out
+/// is not a failure), analytic Jacobians. Parameters: host pose (7), target pose (7), inverse depth (1).
+class PhotometricFactor : public ceres::SizedCostFunction<1, 7, 7, 1> {
  public:
-  PhotometricFactor(const Eigen::Vector3d& host_ray, double host_value, const Interpolator* target,
-                    double fx, double fy, double cx, double cy, double sigma)
-      : host_ray_(host_ray), host_value_(host_value), target_(target), fx_(fx), fy_(fy), cx_(cx), cy_(cy), sigma_(sigma) {}
+  PhotometricFactor(const Eigen::Vector3d& host_ray, double host_value, const Interpolator& target,
+                    const PinholeCamera& camera, double sigma)
+      : host_ray_(host_ray), host_value_(host_value), target_(target), camera_(camera), sigma_(sigma) {}
 
-  template <typename T>
-  bool operator()(const T* q_h, const T* t_h, const T* q_t, const T* t_t, const T* rho, T* residual) const {
-    const Eigen::Matrix<T, 3, 1> p = hostToTarget(q_h, t_h, q_t, t_t, rho[0], host_ray_);
-    if (p.z() <= T(1e-6)) return false;
-    const T u = fx_ * p.x() / p.z() + cx_, v = fy_ * p.y() / p.z() + cy_;
-    T value;
-    target_->Evaluate(v, u, &value);  // row, column
-    residual[0] = (value - host_value_) / sigma_;
+  bool Evaluate(const double* const* parameters, double* residuals, double** jacobians) const override {
+    const HostToTarget point(parameters[0], parameters[1], parameters[2][0], host_ray_);
+    if (point.P.z() <= 1e-6) return false;
+    Eigen::Matrix<double, 2, 3> d_pixel;
+    const Eigen::Vector2d pixel = project(point.P, camera_.fx, camera_.fy, camera_.cx, camera_.cy, &d_pixel);
+    double value = 0.0, d_row = 0.0, d_column = 0.0;
+    target_.Evaluate(pixel.y(), pixel.x(), &value, &d_row, &d_column);
+    residuals[0] = (value - host_value_) / sigma_;
+    if (!jacobians) return true;
+    const Eigen::RowVector3d d_point = Eigen::RowVector2d(d_column, d_row) * d_pixel / sigma_;
+    writePoseJacobian(d_point * point.d_host, jacobians[0]);
+    writePoseJacobian(d_point * point.d_target, jacobians[1]);
+    if (jacobians[2]) jacobians[2][0] = d_point.dot(point.d_rho);
     return true;
-  }
-
-  static ceres::CostFunction* Create(const Eigen::Vector3d& host_ray, double host_value, const Interpolator* target,
-                                     double fx, double fy, double cx, double cy, double sigma) {
-    return new ceres::AutoDiffCostFunction<PhotometricFactor, 1, 4, 3, 4, 3, 1>(
-        new PhotometricFactor(host_ray, host_value, target, fx, fy, cx, cy, sigma));
   }
 
  private:
   Eigen::Vector3d host_ray_;
   double host_value_;
-  const Interpolator* target_;
-  double fx_, fy_, cx_, cy_, sigma_;
+  const Interpolator& target_;
+  const PinholeCamera& camera_;
+  double sigma_;
 };
 
 }  // namespace factors

@@ -1,21 +1,61 @@
 #pragma once
-// Shared by the cost functors: a keyframe pose as Ceres parameters, camera-to-world rotation as an
-// Eigen quaternion (x, y, z, w) and translation (3), and the projection of a host point into a target.
+// Shared by the cost functions: a keyframe pose as one Ceres parameter block, and the projection of
+// a host point into a target keyframe with its derivatives.
+#include <array>
+
+#include <ceres/manifold.h>
 #include <Eigen/Geometry>
+
+#include "semantic_edge_vo/se3.h"
 
 namespace semantic_edge_vo {
 namespace factors {
 
-/// The point at host pixel (u, v) and inverse depth `rho`, seen from the target camera: returns it
-/// in the target optical frame (unnormalised: z may be any sign).
-template <typename T>
-Eigen::Matrix<T, 3, 1> hostToTarget(const T* q_world_host, const T* t_world_host, const T* q_world_target,
-                                    const T* t_world_target, const T& rho, const Eigen::Vector3d& host_ray) {
-  const Eigen::Map<const Eigen::Quaternion<T>> q_h(q_world_host), q_t(q_world_target);
-  const Eigen::Map<const Eigen::Matrix<T, 3, 1>> p_h(t_world_host), p_t(t_world_target);
-  // Homogeneous in the inverse depth: world point * rho = R_h ray + rho p_h; bring it to the target.
-  const Eigen::Matrix<T, 3, 1> scaled_world = q_h * host_ray.cast<T>() + rho * p_h;
-  return q_t.conjugate() * (scaled_world - rho * p_t);
+/// Camera-to-world pose as 7 parameters: translation (3), then rotation as a quaternion (x, y, z, w).
+using PoseParameters = std::array<double, 7>;
+PoseParameters toParameters(const Eigen::Isometry3d& T_world_cam);
+Eigen::Isometry3d fromParameters(const double* parameters);
+
+/// Poses change by a twist in the camera frame, T <- T exp(v, w), 6 tangent dimensions: rotations
+/// turn about the camera's own centre (a twist in the world frame would swing a camera hundreds of
+/// metres from the origin about it, coupling rotation and translation badly). The cost functions
+/// give their Jacobians in the tangent space, padded with a zero column to the 7 parameters;
+/// PlusJacobian is therefore [I; 0], so Ceres' product of the two is the tangent Jacobian.
+class PoseManifold : public ceres::Manifold {
+ public:
+  int AmbientSize() const override { return 7; }
+  int TangentSize() const override { return 6; }
+  bool Plus(const double* x, const double* delta, double* x_plus_delta) const override;
+  bool PlusJacobian(const double* x, double* jacobian) const override;
+  bool Minus(const double* y, const double* x, double* y_minus_x) const override;
+  bool MinusJacobian(const double* x, double* jacobian) const override;
+};
+
+/// The point at a host ray (pixel on the z = 1 plane) and inverse depth rho, seen from the target,
+/// scaled by rho (homogeneous: finite at rho = 0), with its derivatives.
+struct HostToTarget {
+  Eigen::Vector3d P;                    ///< in the target optical frame, times rho
+  Eigen::Matrix<double, 3, 6> d_host;   ///< dP / d(host twist)
+  Eigen::Matrix<double, 3, 6> d_target; ///< dP / d(target twist)
+  Eigen::Vector3d d_rho;                ///< dP / d rho
+
+  HostToTarget(const double* host, const double* target, double rho, const Eigen::Vector3d& host_ray);
+};
+
+/// Writes a 1 x 7 Jacobian row (tangent part and the zero pad) when Ceres asks for it.
+inline void writePoseJacobian(const Eigen::Matrix<double, 1, 6>& tangent, double* jacobian) {
+  if (!jacobian) return;
+  Eigen::Map<Eigen::Matrix<double, 1, 7>> row(jacobian);
+  row.head<6>() = tangent;
+  row(6) = 0.0;
+}
+
+/// Pixel of a (scaled) camera point and its derivative.
+inline Eigen::Vector2d project(const Eigen::Vector3d& P, double fx, double fy, double cx, double cy,
+                               Eigen::Matrix<double, 2, 3>* d_point) {
+  const double iz = 1.0 / P.z();
+  *d_point << fx * iz, 0.0, -fx * P.x() * iz * iz, 0.0, fy * iz, -fy * P.y() * iz * iz;
+  return Eigen::Vector2d(fx * P.x() * iz + cx, fy * P.y() * iz + cy);
 }
 
 }  // namespace factors

@@ -1,0 +1,139 @@
+// The window optimiser's analytic Jacobians against central differences through the pose manifold.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "semantic_edge_vo/factors/edge_factor.h"
+#include "semantic_edge_vo/factors/photometric_factor.h"
+#include "semantic_edge_vo/image_pyramid.h"
+
+namespace semantic_edge_vo {
+namespace {
+
+using factors::PoseParameters;
+
+/// Residual and Jacobians of a 1-residual factor over (host pose, target pose, inverse depth); the
+/// numeric ones perturb the poses through PoseManifold::Plus, like the solver.
+struct Derivatives {
+  Eigen::Matrix<double, 1, 6> host, target;
+  double rho = 0.0;
+};
+
+Derivatives analytic(const ceres::CostFunction& factor, PoseParameters host, PoseParameters target, double rho) {
+  const double* parameters[] = {host.data(), target.data(), &rho};
+  double residual = 0.0;
+  Eigen::Matrix<double, 1, 7> j_host, j_target;
+  double j_rho = 0.0;
+  double* jacobians[] = {j_host.data(), j_target.data(), &j_rho};
+  EXPECT_TRUE(factor.Evaluate(parameters, &residual, jacobians));
+  EXPECT_EQ(j_host(6), 0.0);
+  EXPECT_EQ(j_target(6), 0.0);
+  return {j_host.head<6>(), j_target.head<6>(), j_rho};
+}
+
+Derivatives numeric(const ceres::CostFunction& factor, const PoseParameters& host, const PoseParameters& target, double rho,
+                    double step) {
+  const auto residual = [&](const PoseParameters& h, const PoseParameters& t, double r) {
+    const double* parameters[] = {h.data(), t.data(), &r};
+    double value = 0.0;
+    EXPECT_TRUE(factor.Evaluate(parameters, &value, nullptr));
+    return value;
+  };
+  const factors::PoseManifold manifold;
+  Derivatives result;
+  for (int i = 0; i < 6; ++i) {
+    Vector6d delta = Vector6d::Zero();
+    delta(i) = step;
+    PoseParameters plus, minus;
+    manifold.Plus(host.data(), delta.data(), plus.data());
+    manifold.Plus(host.data(), (-delta).eval().data(), minus.data());
+    result.host(i) = (residual(plus, target, rho) - residual(minus, target, rho)) / (2 * step);
+    manifold.Plus(target.data(), delta.data(), plus.data());
+    manifold.Plus(target.data(), (-delta).eval().data(), minus.data());
+    result.target(i) = (residual(host, plus, rho) - residual(host, minus, rho)) / (2 * step);
+  }
+  const double rho_step = step * rho;
+  result.rho = (residual(host, target, rho + rho_step) - residual(host, target, rho - rho_step)) / (2 * rho_step);
+  return result;
+}
+
+void expectNear(const Derivatives& a, const Derivatives& b, double tolerance) {
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_NEAR(a.host(i), b.host(i), tolerance * (1.0 + std::abs(b.host(i)))) << "host " << i;
+    EXPECT_NEAR(a.target(i), b.target(i), tolerance * (1.0 + std::abs(b.target(i)))) << "target " << i;
+  }
+  EXPECT_NEAR(a.rho, b.rho, tolerance * (1.0 + std::abs(b.rho)));
+}
+
+PinholeCamera testCamera() {
+  PinholeCamera camera = kittiCamera();
+  camera.width = 640;
+  camera.height = 360;
+  camera.cx = 320.0;
+  camera.cy = 180.0;
+  return camera;
+}
+
+/// Two keyframes 0.8 m apart with a small turn, and a host point 12 m ahead.
+struct Scene {
+  PoseParameters host, target;
+  Eigen::Vector3d ray;
+  double rho = 1.0 / 12.0;
+
+  Scene() {
+    Eigen::Isometry3d T_host = Eigen::Isometry3d::Identity();
+    T_host.translation() = Eigen::Vector3d(0.3, -0.1, 2.0);
+    Eigen::Isometry3d T_target = T_host;
+    T_target.linear() = Eigen::AngleAxisd(0.03, Eigen::Vector3d(0.2, 1.0, 0.1).normalized()).toRotationMatrix();
+    T_target.translation() += Eigen::Vector3d(0.1, 0.02, 0.8);
+    host = factors::toParameters(T_host);
+    target = factors::toParameters(T_target);
+    ray = testCamera().backProject(250.0, 150.0, 1.0);
+  }
+};
+
+TEST(WindowFactors, PhotometricJacobiansMatchCentralDifferences) {
+  // A blurred bright rectangle whose corner lies 2 px right of and below the projection: the point
+  // sits on the flanks of both of its gradient ridges, where the gradient magnitude changes.
+  const Scene scene;
+  const PinholeCamera camera = testCamera();
+  const factors::HostToTarget seen(scene.host.data(), scene.target.data(), scene.rho, scene.ray);
+  const Eigen::Vector2d pixel = camera.project(seen.P);
+  cv::Mat gray(camera.height, camera.width, CV_8U, cv::Scalar(40));
+  cv::rectangle(gray, cv::Point(static_cast<int>(pixel.x()) + 2, static_cast<int>(pixel.y()) + 2), cv::Point(camera.width, camera.height),
+                cv::Scalar(220), cv::FILLED);
+  cv::GaussianBlur(gray, gray, cv::Size(0, 0), 2.5);
+  const ImagePyramid pyramid(gray, camera, 1);
+  const cv::Mat& gradient = pyramid.level(0).gradient;
+  const ceres::Grid2D<float, 1> grid(gradient.ptr<float>(), 0, gradient.rows, 0, gradient.cols);
+  const factors::Interpolator interpolator(grid);
+  const factors::PhotometricFactor factor(scene.ray, 5.0, interpolator, camera, 4.0);
+  const Derivatives expected = numeric(factor, scene.host, scene.target, scene.rho, 1e-6);
+  EXPECT_GT(expected.host.norm(), 1.0);  // the point sees the pattern: the test is not trivial
+  expectNear(analytic(factor, scene.host, scene.target, scene.rho), expected, 1e-3);
+}
+
+TEST(WindowFactors, EdgeJacobiansMatchCentralDifferences) {
+  const PinholeCamera camera = testCamera();
+  const Scene scene;
+  const factors::EdgeFactor factor(scene.ray, Eigen::Vector2d(240.0, 160.0), Eigen::Vector2d(0.6, 0.8), camera.fx, camera.fy,
+                                   camera.cx, camera.cy, 1.0);
+  const Derivatives expected = numeric(factor, scene.host, scene.target, scene.rho, 1e-6);
+  EXPECT_GT(expected.host.norm(), 1.0);
+  expectNear(analytic(factor, scene.host, scene.target, scene.rho), expected, 1e-4);
+}
+
+TEST(WindowFactors, PoseManifoldPlusAndMinusAreInverse) {
+  const Scene scene;
+  const factors::PoseManifold manifold;
+  Vector6d delta;
+  delta << 0.1, -0.2, 0.3, 0.01, -0.02, 0.015;
+  PoseParameters moved;
+  ASSERT_TRUE(manifold.Plus(scene.host.data(), delta.data(), moved.data()));
+  Vector6d back;
+  ASSERT_TRUE(manifold.Minus(moved.data(), scene.host.data(), back.data()));
+  EXPECT_LT((back - delta).norm(), 1e-9);
+}
+
+}  // namespace
+}  // namespace semantic_edge_vo
