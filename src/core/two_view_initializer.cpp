@@ -40,6 +40,9 @@ void TwoViewInitializer::reset(const cv::Mat& gray, const std::vector<Eigen::Vec
 
 TwoViewInitializer::Status TwoViewInitializer::add(const cv::Mat& gray) {
   ++frames_;
+  // Nothing to follow (a frame without candidates: all of it movable, say); OpenCV's KLT throws on an
+  // empty point set.
+  if (static_cast<int>(current_.size()) < options_.min_points) return Status::kFailed;
   std::vector<cv::Point2f> next, back;
   std::vector<std::uint8_t> status, back_status;
   std::vector<float> error;

@@ -90,7 +90,15 @@ class TrackingNodelet : public nodelet::Nodelet {
     class_names_ = frame->class_names;
     const auto odometry_frame =
         odometryFrameFrom(frame, use_edges_ ? field : NearestNeighborFieldConstPtr(), frame_count_++, options_.tracker.levels);
-    const std::vector<FramePose> poses = odometry_->process(odometry_frame);
+    std::vector<FramePose> poses;
+    try {
+      poses = odometry_->process(odometry_frame);
+    } catch (const std::exception& e) {
+      // A library assertion on input the checks above let through must not take the manager (and
+      // every other nodelet in it) down: the frame is dropped, the odometry goes on.
+      rejections_->reject("frame", "odometry_exception", e.what());
+      return;
+    }
     // A frame without a pose yet (it waits for the initialisation) still gets its status now.
     if (std::none_of(poses.begin(), poses.end(), [&](const FramePose& p) { return p.index == odometry_frame->index; }))
       publishStatus(frame->header, nullptr);
