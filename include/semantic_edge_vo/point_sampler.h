@@ -52,7 +52,8 @@ class PointSampler {
   PointSample sample(const cv::Mat& gray, const EdgeSetView& edges, const MovableClassFilter* movable = nullptr) const;
 
  private:
-  std::vector<std::uint32_t> sampleEdges(const EdgeSetView& edges, int width, int height) const;
+  /// @param excluded_classes edges with any of these classes are not sampled (0: none excluded)
+  std::vector<std::uint32_t> sampleEdges(const EdgeSetView& edges, int width, int height, std::uint32_t excluded_classes) const;
   void sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, int count, const MovableClassFilter* movable,
                      PointSample* sample) const;
 

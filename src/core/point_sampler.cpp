@@ -137,25 +137,26 @@ std::uint32_t classMaskOf(const std::vector<std::string>& table_names, const std
 
 PointSample PointSampler::sample(const cv::Mat& gray, const EdgeSetView& edges, const MovableClassFilter* movable) const {
   PointSample result;
-  result.edge_indices = sampleEdges(edges, gray.cols, gray.rows);
-  if (movable && movable->class_mask) {
-    // Left out after sampling: their share goes to supportive pixels through the shortfall.
-    auto& indices = result.edge_indices;
-    indices.erase(std::remove_if(indices.begin(), indices.end(),
-                                 [&](std::uint32_t i) { return (edges.class_mask[i] & movable->class_mask) != 0; }),
-                  indices.end());
-  }
+  result.edge_indices = sampleEdges(edges, gray.cols, gray.rows, movable ? movable->class_mask : 0u);
   const int shortfall = options_.max_edge_points - static_cast<int>(result.edge_indices.size());
   sampleSupport(gray, edges, options_.min_support_points + std::max(0, shortfall), movable, &result);
   return result;
 }
 
-std::vector<std::uint32_t> PointSampler::sampleEdges(const EdgeSetView& edges, int width, int height) const {
-  const std::size_t n = edges.size();
+std::vector<std::uint32_t> PointSampler::sampleEdges(const EdgeSetView& edges, int width, int height,
+                                                     std::uint32_t excluded_classes) const {
+  // The eligible edges: all, or those without an excluded class (the budget goes to the others).
+  std::vector<std::uint32_t> eligible;
+  if (excluded_classes)
+    for (std::uint32_t i = 0; i < edges.size(); ++i)
+      if (!(edges.class_mask[i] & excluded_classes)) eligible.push_back(i);
+  const bool all_eligible = !excluded_classes;
+  const std::size_t n = all_eligible ? edges.size() : eligible.size();
+  const auto index = [&](std::size_t k) { return all_eligible ? static_cast<std::uint32_t>(k) : eligible[k]; };
   const auto wanted = static_cast<std::size_t>(options_.max_edge_points);
   if (n <= wanted) {
     std::vector<std::uint32_t> all(n);
-    std::iota(all.begin(), all.end(), 0u);
+    for (std::size_t k = 0; k < n; ++k) all[k] = index(k);
     return all;
   }
 
@@ -164,15 +165,16 @@ std::vector<std::uint32_t> PointSampler::sampleEdges(const EdgeSetView& edges, i
   const int cell = std::max(2, static_cast<int>(std::sqrt(static_cast<double>(width) * height / wanted)));
   const int cols = (width + cell - 1) / cell, rows = (height + cell - 1) / cell;
   std::vector<std::uint32_t> cell_start(static_cast<std::size_t>(cols * rows) + 1, 0u), cell_of(n);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t i = index(k);
     const int cx = std::clamp(static_cast<int>(edges.u[i]) / cell, 0, cols - 1);
     const int cy = std::clamp(static_cast<int>(edges.v[i]) / cell, 0, rows - 1);
-    cell_of[i] = static_cast<std::uint32_t>(cy * cols + cx);
-    ++cell_start[cell_of[i] + 1];
+    cell_of[k] = static_cast<std::uint32_t>(cy * cols + cx);
+    ++cell_start[cell_of[k] + 1];
   }
   for (std::size_t c = 1; c < cell_start.size(); ++c) cell_start[c] += cell_start[c - 1];
   std::vector<std::uint32_t> by_cell(n), fill(cell_start.begin(), cell_start.end() - 1);
-  for (std::uint32_t i = 0; i < n; ++i) by_cell[fill[cell_of[i]]++] = i;
+  for (std::size_t k = 0; k < n; ++k) by_cell[fill[cell_of[k]]++] = index(k);  // edge indices
 
   const auto stronger = [&](std::uint32_t a, std::uint32_t b) {
     return edges.strength[a] != edges.strength[b] ? edges.strength[a] > edges.strength[b] : a < b;
