@@ -1,11 +1,5 @@
-// Runs the odometry offline, deterministically, on a KITTI odometry folder or a synthetic sequence.
-//   run_sequence --sequence DIR --output OUT [--field snnf|onnf|annf|none]
-//       [--intake canny|fused|semantic_edges] [--segmenter-model PATH] [--config FILE] [--frames N] [--quiet]
-// --config reads a file laid out like config/semantic_edge_vo.yaml (the nodelets' parameters: the
-// edge_intake, segmenter, nearest_neighbor_field and tracking blocks); the flags override it.
-// Writes OUT/poses_kitti.txt (one line per input frame, camera-to-world of camera 0, frame 0 at
-// identity), OUT/poses_tum.txt, OUT/timing.txt (per frame and stage, ms), OUT/parameters.txt
-// (every option used) and prints a summary.
+// Runs the odometry offline, deterministically, on a KITTI odometry folder or a synthetic sequence
+// (usage: kUsage below, printed by --help).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -102,14 +96,28 @@ std::string applyFlags(const Arguments& args, RunOptions* options) {
 
 }  // namespace
 
+const char* const kUsage = R"(usage: run_sequence --sequence DIR --output OUT [--field snnf|onnf|annf|none]
+           [--intake canny|fused|semantic_edges] [--segmenter-model PATH] [--config FILE] [--frames N] [--quiet]
+Runs the odometry offline, deterministically, on a KITTI odometry folder (image_0/, calib.txt,
+times.txt) or a synthetic sequence. --config reads a file laid out like config/semantic_edge_vo.yaml
+(the nodelets' parameters: its edge_intake, segmenter, nearest_neighbor_field and tracking blocks);
+the flags override it; without it every option has its built-in default. Writes OUT/poses_kitti.txt
+(one line per input frame, camera-to-world of camera 0, frame 0 at identity), OUT/poses_tum.txt,
+OUT/timing.txt (per frame and stage, ms), OUT/parameters.txt (every option used) and prints a summary.
+)";
+
 int main(int argc, char** argv) {
+  if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
   Arguments args;
   RunOptions options;
   std::string error = parse(argc, argv, &args);
   if (error.empty()) error = loadConfig(args.config, &options);
   if (error.empty()) error = applyFlags(args, &options);
   if (!error.empty()) {
-    std::fprintf(stderr, "run_sequence: %s\n(usage: see the comment at the top of src/tools/run_sequence.cpp)\n", error.c_str());
+    std::fprintf(stderr, "run_sequence: %s\n%s", error.c_str(), kUsage);
     return 2;
   }
   const FrameBuilderOptions& frame_options = options.frame;
