@@ -56,6 +56,7 @@ class FrameBuilder {
   FrameBuilderOptions options_;
   PinholeCamera camera_;
   std::vector<std::string> class_names_;
+  PointSampler sampler_;
 };
 
 }  // namespace semantic_edge_vo

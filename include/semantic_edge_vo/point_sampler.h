@@ -27,13 +27,6 @@ struct PointSamplerOptions {
 /// Bits of the classes named in `names` (comma-separated) that `table_names` has.
 std::uint32_t classMaskOf(const std::vector<std::string>& table_names, const std::string& names);
 
-/// Leaves out points on movable classes: edges with any of `class_mask`'s classes, supportive pixels
-/// whose most probable class is one of them.
-struct MovableClassFilter {
-  std::uint32_t class_mask = 0;
-  const ClassEvidence* evidence = nullptr;  ///< the frame's class evidence (supportive pixels)
-};
-
 struct PointSample {
   std::vector<std::uint32_t> edge_indices;  ///< into the EdgeSet
   std::vector<float> support_u, support_v;  ///< supportive pixels, full-resolution pixels
@@ -45,19 +38,24 @@ struct PointSample {
 /// added to M.
 class PointSampler {
  public:
-  explicit PointSampler(const PointSamplerOptions& options) : options_(options) {}
+  /// @param[in] class_names the class table the edges' class masks refer to (resolves
+  ///            options.movable_classes; empty: nothing is movable)
+  explicit PointSampler(const PointSamplerOptions& options, const std::vector<std::string>& class_names = {})
+      : options_(options), movable_mask_(classMaskOf(class_names, options.movable_classes)) {}
 
   /// @param[in] gray 8-bit image the edges come from
-  /// @param[in] movable points to leave out, or nullptr (no class evidence: canny intake)
-  PointSample sample(const cv::Mat& gray, const EdgeSetView& edges, const MovableClassFilter* movable = nullptr) const;
+  /// @param[in] classes the frame's class evidence, or nullptr (canny edges): with it, edges with a
+  ///            movable class and supportive pixels whose most probable class is movable are left out
+  PointSample sample(const cv::Mat& gray, const EdgeSetView& edges, const ClassEvidence* classes = nullptr) const;
 
  private:
   /// @param excluded_classes edges with any of these classes are not sampled (0: none excluded)
   std::vector<std::uint32_t> sampleEdges(const EdgeSetView& edges, int width, int height, std::uint32_t excluded_classes) const;
-  void sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, int count, const MovableClassFilter* movable,
+  void sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, int count, const ClassEvidence* classes,
                      PointSample* sample) const;
 
   PointSamplerOptions options_;
+  std::uint32_t movable_mask_;  ///< options_.movable_classes in the class table
 };
 
 }  // namespace semantic_edge_vo

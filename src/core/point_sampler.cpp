@@ -135,11 +135,11 @@ std::uint32_t classMaskOf(const std::vector<std::string>& table_names, const std
   return mask;
 }
 
-PointSample PointSampler::sample(const cv::Mat& gray, const EdgeSetView& edges, const MovableClassFilter* movable) const {
+PointSample PointSampler::sample(const cv::Mat& gray, const EdgeSetView& edges, const ClassEvidence* classes) const {
   PointSample result;
-  result.edge_indices = sampleEdges(edges, gray.cols, gray.rows, movable ? movable->class_mask : 0u);
+  result.edge_indices = sampleEdges(edges, gray.cols, gray.rows, classes ? movable_mask_ : 0u);
   const int shortfall = options_.max_edge_points - static_cast<int>(result.edge_indices.size());
-  sampleSupport(gray, edges, options_.min_support_points + std::max(0, shortfall), movable, &result);
+  sampleSupport(gray, edges, options_.min_support_points + std::max(0, shortfall), classes, &result);
   return result;
 }
 
@@ -213,7 +213,7 @@ std::vector<std::uint32_t> PointSampler::sampleEdges(const EdgeSetView& edges, i
 }
 
 void PointSampler::sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, int count,
-                                 const MovableClassFilter* movable, PointSample* sample) const {
+                                 const ClassEvidence* classes, PointSample* sample) const {
   if (count <= 0) return;
   // Pixels near any edge are the edges' business; supportive pixels stay clear of them.
   cv::Mat near_edge(gray.size(), CV_8U, cv::Scalar(0));
@@ -269,11 +269,11 @@ void PointSampler::sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, 
       }
     }
   }
-  if (movable && movable->class_mask && movable->evidence) {
+  if (classes && movable_mask_) {
     const auto on_movable = [&](const Candidate& c) {
       float best = 0.0f;
       const cv::Point pixel(c.x, c.y);
-      return (movable->evidence->classMaskAcross({pixel, pixel, pixel}, 1.0f, &best) & movable->class_mask) != 0;
+      return (classes->classMaskAcross({pixel, pixel, pixel}, 1.0f, &best) & movable_mask_) != 0;
     };
     candidates.erase(std::remove_if(candidates.begin(), candidates.end(), on_movable), candidates.end());
   }

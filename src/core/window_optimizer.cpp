@@ -1,6 +1,5 @@
 #include "semantic_edge_vo/window_optimizer.h"
 
-#include <array>
 #include <sstream>
 
 #include "semantic_edge_vo/factors/edge_factor.h"
@@ -98,17 +97,16 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
       if (point.isEdge() && options_.edge_weight > 0.0 && target.frame->has_field &&
           associate(target.frame->field, point.class_mask, pixel, options_.edge_radius, &match)) {
         problem.AddResidualBlock(
-            new factors::EdgeFactor(ray, Eigen::Vector2d(match.u, match.v), Eigen::Vector2d(match.normal_x, match.normal_y),
-                                    camera.fx, camera.fy, camera.cx, camera.cy, options_.edge_sigma),
+            new factors::EdgeFactor(ray, Eigen::Vector2d(match.u, match.v), Eigen::Vector2d(match.normal_x, match.normal_y), camera,
+                                    options_.edge_sigma),
             new ceres::ScaledLoss(new ceres::HuberLoss(edge_loss), options_.edge_weight, ceres::TAKE_OWNERSHIP), host_pose,
             target_pose, &inverse_depths[r]);
         ++result.edge_residuals;
       }
     }
     if (observed == 0) continue;
-    problem.AddResidualBlock(factors::InverseDepthPrior::Create(point.inverse_depth,
-                                                                       options_.depth_prior_scale * std::sqrt(point.inverse_depth_variance)),
-                             nullptr, &inverse_depths[r]);
+    const double prior_sigma = options_.depth_prior_scale * std::sqrt(point.inverse_depth_variance);
+    problem.AddResidualBlock(factors::InverseDepthPrior::Create(point.inverse_depth, prior_sigma), nullptr, &inverse_depths[r]);
     problem.SetParameterLowerBound(&inverse_depths[r], 0, 1e-4);
     ++result.points;
   }

@@ -55,8 +55,9 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     } else {
       classes_ = ClassTable::singleEdgeClass();
     }
-    if (error.empty()) error = loadPointSamplerOptions(&loader, &sampler_options_);
-    movable_class_mask_ = classMaskOf(classes_.names(), sampler_options_.movable_classes);
+    PointSamplerOptions sampler_options;
+    if (error.empty()) error = loadPointSamplerOptions(&loader, &sampler_options);
+    sampler_ = PointSampler(sampler_options, classes_.names());
     NODELET_INFO_STREAM("parameters:" << loader.summary() << "\n  classes = " << classes_.size());
     if (error.empty()) error = parameters.error();
     if (error.empty() && queue_size < 1) error = "queue_size must be >= 1";
@@ -222,9 +223,8 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
       frame->intake_mode = toString(IntakeMode::kCanny);
     }
     // Canny edges (the mode, or the fallback) carry every class: nothing to leave out.
-    const MovableClassFilter movable{movable_class_mask_, &evidence};
     const bool semantic = input.complete && options_.mode != IntakeMode::kCanny;
-    PointSample sample = PointSampler(sampler_options_).sample(gray, edges.view(), semantic ? &movable : nullptr);
+    PointSample sample = sampler_.sample(gray, edges.view(), semantic ? &evidence : nullptr);
     frame->sampled_edges = std::move(sample.edge_indices);
     frame->support_u = std::move(sample.support_u);
     frame->support_v = std::move(sample.support_v);
@@ -275,8 +275,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
   using CompressedSync = message_filters::TimeSynchronizer<sensor_msgs::CompressedImage, sensor_msgs::CameraInfo>;
 
   SemanticEdgeOptions options_;
-  PointSamplerOptions sampler_options_;
-  std::uint32_t movable_class_mask_ = 0;  ///< sampler_options_.movable_classes in the class table
+  PointSampler sampler_{PointSamplerOptions()};  ///< set up in onInit
   ClassTable classes_;
   ClassEvidenceForm class_form_ = ClassEvidenceForm::kProbabilities;
   bool fallback_to_canny_ = true;

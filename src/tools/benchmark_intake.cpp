@@ -182,12 +182,8 @@ int main(int argc, char** argv) {
       {IntakeMode::kSemanticEdges, "8UC19 edge probabilities", {ClassEvidenceForm::kProbabilities, edge_probabilities8, classes}},
       {IntakeMode::kSemanticEdges, "8UC4 bitmask+strength", {ClassEvidenceForm::kBitmask, bitmask, classes}},
   };
-  const PointSamplerOptions sampler_options;
-  const PointSampler sampler(sampler_options);
-  const std::uint32_t movable_mask = classMaskOf(ClassTable::cityscapes().names(), sampler_options.movable_classes);
+  const PointSampler sampler(PointSamplerOptions(), ClassTable::cityscapes().names());
   for (const Row& row : rows) {
-    // As the intake nodelet samples: movable classes left out whenever there is class evidence.
-    const MovableClassFilter movable{movable_mask, &row.evidence};
     SemanticEdgeOptions options;
     options.mode = row.mode;
     const SemanticEdgeExtractor extractor(options);
@@ -200,7 +196,8 @@ int main(int argc, char** argv) {
       const double start = threadCpuMs();
       if (ExtractionError e = extractor.extract(gray, row.evidence, cv::Mat(), &edges)) error = e.reason + ": " + e.detail;
       const double extracted = threadCpuMs();
-      sample = sampler.sample(gray, edges.view(), row.mode == IntakeMode::kCanny ? nullptr : &movable);
+      // As the intake nodelet samples: movable classes left out whenever there is class evidence.
+      sample = sampler.sample(gray, edges.view(), row.mode == IntakeMode::kCanny ? nullptr : &row.evidence);
       extract_ms.push_back(extracted - start);
       sample_ms.push_back(threadCpuMs() - extracted);
     }

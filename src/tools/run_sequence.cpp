@@ -94,8 +94,6 @@ std::string applyFlags(const Arguments& args, RunOptions* options) {
   return error.empty() ? options->odometry.validate() : error;
 }
 
-}  // namespace
-
 const char* const kUsage = R"(usage: run_sequence --sequence DIR --output OUT [--field snnf|onnf|annf|none]
            [--intake canny|fused|semantic_edges] [--segmenter-model PATH] [--config FILE] [--frames N] [--quiet]
 Runs the odometry offline, deterministically, on a KITTI odometry folder (image_0/, calib.txt,
@@ -105,6 +103,8 @@ the flags override it; without it every option has its built-in default. Writes 
 (one line per input frame, camera-to-world of camera 0, frame 0 at identity), OUT/poses_tum.txt,
 OUT/timing.txt (per frame and stage, ms), OUT/parameters.txt (every option used) and prints a summary.
 )";
+
+}  // namespace
 
 int main(int argc, char** argv) {
   if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {

@@ -121,11 +121,11 @@ TEST(PointSampler, LeavesOutMovableClasses) {
   PointSamplerOptions options;
   options.max_edge_points = 500;
   options.min_support_points = 200;
-  const MovableClassFilter movable{classMaskOf(table.names(), options.movable_classes), &evidence};
   EXPECT_EQ(classMaskOf(table.names(), " car, bus ,no_such_class"), (1u << car) | (1u << table.indexOf("bus")));
 
-  const PointSample all = PointSampler(options).sample(gray, edges.view());
-  const PointSample static_only = PointSampler(options).sample(gray, edges.view(), &movable);
+  const PointSampler sampler(options, table.names());
+  const PointSample all = sampler.sample(gray, edges.view());
+  const PointSample static_only = sampler.sample(gray, edges.view(), &evidence);
   const auto on_left = [](float u) { return u < 320.0f; };
   int edges_left = 0;
   for (std::uint32_t i : all.edge_indices) edges_left += on_left(edges.u[i]);

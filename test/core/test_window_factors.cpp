@@ -97,7 +97,7 @@ TEST(WindowFactors, PhotometricJacobiansMatchCentralDifferences) {
   // sits on the flanks of both of its gradient ridges, where the gradient magnitude changes.
   const Scene scene;
   const PinholeCamera camera = testCamera();
-  const factors::HostToTarget seen(scene.host.data(), scene.target.data(), scene.rho, scene.ray);
+  const factors::HostToTarget seen(scene.host.data(), scene.target.data(), scene.rho, scene.ray, false);
   const Eigen::Vector2d pixel = camera.project(seen.P);
   cv::Mat gray(camera.height, camera.width, CV_8U, cv::Scalar(40));
   cv::rectangle(gray, cv::Point(static_cast<int>(pixel.x()) + 2, static_cast<int>(pixel.y()) + 2), cv::Point(camera.width, camera.height),
@@ -116,8 +116,7 @@ TEST(WindowFactors, PhotometricJacobiansMatchCentralDifferences) {
 TEST(WindowFactors, EdgeJacobiansMatchCentralDifferences) {
   const PinholeCamera camera = testCamera();
   const Scene scene;
-  const factors::EdgeFactor factor(scene.ray, Eigen::Vector2d(240.0, 160.0), Eigen::Vector2d(0.6, 0.8), camera.fx, camera.fy,
-                                   camera.cx, camera.cy, 1.0);
+  const factors::EdgeFactor factor(scene.ray, Eigen::Vector2d(240.0, 160.0), Eigen::Vector2d(0.6, 0.8), camera, 1.0);
   const Derivatives expected = numeric(factor, scene.host, scene.target, scene.rho, 1e-6);
   EXPECT_GT(expected.host.norm(), 1.0);
   expectNear(analytic(factor, scene.host, scene.target, scene.rho), expected, 1e-4);

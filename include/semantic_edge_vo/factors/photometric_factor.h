@@ -21,7 +21,7 @@ class PhotometricFactor : public ceres::SizedCostFunction<1, 7, 7, 1> {
       : host_ray_(host_ray), host_value_(host_value), target_(target), camera_(camera), sigma_(sigma) {}
 
   bool Evaluate(const double* const* parameters, double* residuals, double** jacobians) const override {
-    const HostToTarget point(parameters[0], parameters[1], parameters[2][0], host_ray_);
+    const HostToTarget point(parameters[0], parameters[1], parameters[2][0], host_ray_, jacobians != nullptr);
     if (point.P.z() <= 1e-6) return false;
     Eigen::Matrix<double, 2, 3> d_pixel;
     const Eigen::Vector2d pixel = project(point.P, camera_.fx, camera_.fy, camera_.cx, camera_.cy, &d_pixel);
@@ -29,10 +29,7 @@ class PhotometricFactor : public ceres::SizedCostFunction<1, 7, 7, 1> {
     target_.Evaluate(pixel.y(), pixel.x(), &value, &d_row, &d_column);
     residuals[0] = (value - host_value_) / sigma_;
     if (!jacobians) return true;
-    const Eigen::RowVector3d d_point = Eigen::RowVector2d(d_column, d_row) * d_pixel / sigma_;
-    writePoseJacobian(d_point * point.d_host, jacobians[0]);
-    writePoseJacobian(d_point * point.d_target, jacobians[1]);
-    if (jacobians[2]) jacobians[2][0] = d_point.dot(point.d_rho);
+    writeJacobians(point, Eigen::RowVector2d(d_column, d_row) * d_pixel / sigma_, jacobians);
     return true;
   }
 

@@ -32,22 +32,27 @@ class PoseManifold : public ceres::Manifold {
 };
 
 /// The point at a host ray (pixel on the z = 1 plane) and inverse depth rho, seen from the target,
-/// scaled by rho (homogeneous: finite at rho = 0), with its derivatives.
+/// scaled by rho (homogeneous: finite at rho = 0), with its derivatives when asked for.
 struct HostToTarget {
   Eigen::Vector3d P;                    ///< in the target optical frame, times rho
   Eigen::Matrix<double, 3, 6> d_host;   ///< dP / d(host twist)
   Eigen::Matrix<double, 3, 6> d_target; ///< dP / d(target twist)
   Eigen::Vector3d d_rho;                ///< dP / d rho
 
-  HostToTarget(const double* host, const double* target, double rho, const Eigen::Vector3d& host_ray);
+  /// @param with_derivatives false: only P (Ceres evaluates many residuals without Jacobians)
+  HostToTarget(const double* host, const double* target, double rho, const Eigen::Vector3d& host_ray, bool with_derivatives);
 };
 
-/// Writes a 1 x 7 Jacobian row (tangent part and the zero pad) when Ceres asks for it.
-inline void writePoseJacobian(const Eigen::Matrix<double, 1, 6>& tangent, double* jacobian) {
-  if (!jacobian) return;
-  Eigen::Map<Eigen::Matrix<double, 1, 7>> row(jacobian);
-  row.head<6>() = tangent;
-  row(6) = 0.0;
+/// Writes the Jacobians Ceres asks for of a residual r(P) with derivative d_residual = dr/dP: host
+/// and target poses as 1 x 7 rows (tangent part and the zero pad), then the inverse depth.
+inline void writeJacobians(const HostToTarget& point, const Eigen::RowVector3d& d_residual, double** jacobians) {
+  for (int block = 0; block < 2; ++block) {
+    if (!jacobians[block]) continue;  // a constant pose
+    Eigen::Map<Eigen::Matrix<double, 1, 7>> row(jacobians[block]);
+    row.head<6>() = d_residual * (block == 0 ? point.d_host : point.d_target);
+    row(6) = 0.0;
+  }
+  if (jacobians[2]) jacobians[2][0] = d_residual.dot(point.d_rho);
 }
 
 /// Pixel of a (scaled) camera point and its derivative.

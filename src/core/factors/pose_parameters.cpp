@@ -42,12 +42,14 @@ bool PoseManifold::MinusJacobian(const double*, double* jacobian) const {
   return true;
 }
 
-HostToTarget::HostToTarget(const double* host, const double* target, double rho, const Eigen::Vector3d& host_ray) {
+HostToTarget::HostToTarget(const double* host, const double* target, double rho, const Eigen::Vector3d& host_ray,
+                           bool with_derivatives) {
   const Eigen::Isometry3d T_world_host = fromParameters(host), T_world_target = fromParameters(target);
   const Eigen::Matrix3d R_target_world = T_world_target.linear().transpose();
   // Homogeneous in rho: the world point times rho.
   const Eigen::Vector3d scaled_world = T_world_host.linear() * host_ray + rho * T_world_host.translation();
   P = R_target_world * (scaled_world - rho * T_world_target.translation());
+  if (!with_derivatives) return;
   // A host twist moves the point by v + w x X in the host frame (times rho: rho v + w x ray).
   const Eigen::Matrix3d R_target_host = R_target_world * T_world_host.linear();
   d_host.leftCols<3>() = rho * R_target_host;
