@@ -110,6 +110,7 @@ class Odometry {
   // The last two final poses (constant-velocity prediction) and whether any exists.
   Eigen::Isometry3d T_world_last_ = Eigen::Isometry3d::Identity(), T_world_before_ = Eigen::Isometry3d::Identity();
   int poses_seen_ = 0;
+  double last_inlier_ratio_ = 1.0;  ///< photometric inlier ratio of the last tracked frame (1: none)
 };
 
 }  // namespace semantic_edge_vo

@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,7 +19,9 @@ struct TrackerOptions {
   double edge_huber = 1.5;           ///< Huber threshold of point-to-tangent residuals, px of the level
   double edge_sigma = 1.0;           ///< their scale, px of the level
   double edge_weight = 2.0;          ///< weight of edge residuals (paper III-C: more in tracking than in mapping)
-  double accept_inlier_ratio = 0.8;  ///< the constant-velocity guess is taken when this many residuals are inliers
+  /// The constant-velocity guess is taken when its inlier ratio is at least this fraction of the
+  /// previous frame's (the ratio itself varies from scene to scene: 0.6-0.9 on KITTI).
+  double accept_inlier_ratio = 0.85;
   double min_inlier_ratio = 0.5;     ///< lost when fewer photometric residuals are inliers at level 0
   double min_points_in_view = 0.25;  ///< lost when fewer keyframe points project into the frame
   ForwardMotionOptions forward_motion;  ///< prior on the direction of travel (off by default)
@@ -37,6 +40,7 @@ struct TrackingResult {
   int edge_residuals = 0, edge_inliers = 0;
   double photometric_rmse = 0.0;     ///< inliers, gray levels / px
   double edge_rmse = 0.0;            ///< inliers, full-resolution px
+  double inlierRatio() const { return static_cast<double>(photometric_inliers) / std::max(1, photometric_residuals); }
   double mean_flow = 0.0;            ///< mean displacement of the keyframe points, full-resolution px
 };
 
@@ -56,8 +60,9 @@ class Tracker {
   /// @param[in] frame pyramid of the frame
   /// @param[in] field its nearest-neighbour field, or nullptr for photometric-only tracking
   /// @param[in] guesses initial T_cam_kf candidates (constant velocity first)
+  /// @param[in] previous_inlier_ratio photometric inlier ratio of the previous frame (1: none)
   TrackingResult track(const ImagePyramid& frame, const NearestNeighborFieldView* field,
-                       const std::vector<Eigen::Isometry3d>& guesses) const;
+                       const std::vector<Eigen::Isometry3d>& guesses, double previous_inlier_ratio = 1.0) const;
 
  private:
   struct Normal {

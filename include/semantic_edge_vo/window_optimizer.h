@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "semantic_edge_vo/forward_motion_prior.h"
 #include "semantic_edge_vo/keyframe.h"
 
 namespace semantic_edge_vo {
@@ -21,6 +22,9 @@ struct WindowOptimizerOptions {
   /// come from one chain of tracked poses and inherit its errors (a yaw error leaves a left-right
   /// depth gradient that feeds the next yaw error); a loose prior lets the window correct them.
   double depth_prior_scale = 100.0;
+  /// Between consecutive keyframes (the loader sets the tracker's): the window would otherwise
+  /// re-learn the lateral drift the tracker's prior holds back, from depths that agree with it.
+  ForwardMotionOptions forward_motion;
 
   std::string validate() const;
 };

@@ -13,7 +13,8 @@ bool hasSharedClassEdge(const NearestNeighborFieldView& field, std::uint32_t cla
   FieldMatch match;
   for (int layer = 0; layer < field.num_layers; ++layer) {
     const bool wanted = field.kind != FieldKind::kSnnf || ((class_mask >> layer) & 1u);
-    if (wanted && field.nearest(0, layer, x, y, &match) && match.distance <= radius) return true;
+    // Searching only as far as the radius (not the field's truncation radius) is what makes it cheap.
+    if (wanted && field.levels[0].nearest(layer, x, y, static_cast<float>(radius), &match)) return true;
   }
   return false;
 }

@@ -232,8 +232,9 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
   pose.index = frame->index;
   pose.time = frame->time;
   pose.keyframe_id = active_->id;
-  pose.tracking = tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_));
+  pose.tracking = tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_), last_inlier_ratio_);
   pose.tracking_ms = elapsedMs(start);
+  last_inlier_ratio_ = pose.tracking.ok ? pose.tracking.inlierRatio() : 1.0;
   if (!pose.tracking.ok) {
     // Lost: report the prediction, untrusted, and initialise again from the next frame.
     pose.T_world_cam = poses_seen_ >= 2 ? T_world_last_ * (T_world_before_.inverse() * T_world_last_) : T_world_last_;

@@ -44,6 +44,7 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("tracker/forward_motion/sigma", &tracker.forward_motion.sigma_deg, "deg (0: off)");
   loader->load("tracker/forward_motion/pitch", &tracker.forward_motion.pitch_deg, "deg (+: down)");
   loader->load("tracker/forward_motion/yaw", &tracker.forward_motion.yaw_deg, "deg (+: right)");
+  options->window_optimizer.forward_motion = tracker.forward_motion;  // one vehicle, one prior
   loader->load("initializer/min_parallax", &options->initializer.min_parallax, "image widths");
   loader->load("initializer/max_frames", &options->initializer.max_frames, "frames");
   loader->load("initializer/median_depth", &options->initializer.median_depth, "map units");

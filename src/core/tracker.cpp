@@ -181,7 +181,7 @@ double Tracker::optimizeLevel(int level, const ImagePyramid& frame, const Neares
 }
 
 TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFieldView* field,
-                              const std::vector<Eigen::Isometry3d>& guesses) const {
+                              const std::vector<Eigen::Isometry3d>& guesses, double previous_inlier_ratio) const {
   if (!keyframe_ || references_.empty()) return TrackingResult();
   const int levels = std::min({static_cast<int>(references_.size()), frame.levels(),
                                field ? static_cast<int>(field->levels.size()) : 99});
@@ -201,8 +201,7 @@ TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFi
   TrackingResult result;
   result.T_cam_kf = candidates[0];
   const double first_cost = refine(&result, levels - 1);
-  if (candidates.size() > 1 &&
-      result.photometric_inliers < options_.accept_inlier_ratio * std::max(1, result.photometric_residuals)) {
+  if (candidates.size() > 1 && result.inlierRatio() < options_.accept_inlier_ratio * previous_inlier_ratio) {
     TrackingResult best;
     double best_coarse = std::numeric_limits<double>::max();
     int iterations = 0;

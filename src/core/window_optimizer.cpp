@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "semantic_edge_vo/factors/edge_factor.h"
+#include "semantic_edge_vo/factors/forward_motion_factor.h"
 #include "semantic_edge_vo/factors/inverse_depth_prior.h"
 #include "semantic_edge_vo/factors/photometric_factor.h"
 
@@ -16,8 +17,8 @@ bool associate(const NearestNeighborFieldView& field, std::uint32_t class_mask, 
   FieldMatch match;
   for (int layer = 0; layer < field.num_layers; ++layer) {
     if (field.kind == FieldKind::kSnnf && !((class_mask >> layer) & 1u)) continue;
-    if (field.nearest(0, layer, static_cast<float>(pixel.x()), static_cast<float>(pixel.y()), &match) &&
-        match.distance <= radius && (!found || match.distance < best->distance)) {
+    if (field.levels[0].nearest(layer, static_cast<float>(pixel.x()), static_cast<float>(pixel.y()), static_cast<float>(radius), &match) &&
+        (!found || match.distance < best->distance)) {
       *best = match;
       found = true;
     }
@@ -58,6 +59,11 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
   ceres::Problem problem;
   for (factors::PoseParameters& pose : poses) problem.AddParameterBlock(pose.data(), 7, new factors::PoseManifold());
   problem.SetParameterBlockConstant(poses[0].data());
+  if (options_.forward_motion.sigma_deg > 0.0)
+    for (std::size_t k = 1; k < count; ++k)
+      problem.AddResidualBlock(new factors::ForwardMotionFactor(options_.forward_motion, window[first + k - 1]->T_world_cam,
+                                                                window[first + k]->T_world_cam),
+                               nullptr, poses[k - 1].data(), poses[k].data());
 
   // Inverse depths live in a vector parallel to (host, point index) so that they are written back.
   struct PointRef {

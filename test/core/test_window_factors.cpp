@@ -4,6 +4,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "semantic_edge_vo/factors/edge_factor.h"
+#include "semantic_edge_vo/factors/forward_motion_factor.h"
 #include "semantic_edge_vo/factors/photometric_factor.h"
 #include "semantic_edge_vo/image_pyramid.h"
 
@@ -120,6 +121,41 @@ TEST(WindowFactors, EdgeJacobiansMatchCentralDifferences) {
   const Derivatives expected = numeric(factor, scene.host, scene.target, scene.rho, 1e-6);
   EXPECT_GT(expected.host.norm(), 1.0);
   expectNear(analytic(factor, scene.host, scene.target, scene.rho), expected, 1e-4);
+}
+
+TEST(WindowFactors, ForwardMotionJacobiansMatchCentralDifferences) {
+  // The scene's target drifts 0.1 m to the side over 0.8 m: about 7 degrees off the axis.
+  const Scene scene;
+  ForwardMotionOptions options;
+  options.sigma_deg = 5.0;
+  const factors::ForwardMotionFactor factor(options, factors::fromParameters(scene.host.data()), factors::fromParameters(scene.target.data()));
+  const auto evaluate = [&](const PoseParameters& earlier, const PoseParameters& later, double** jacobians) {
+    const double* parameters[] = {earlier.data(), later.data()};
+    Eigen::Vector2d residual;
+    EXPECT_TRUE(factor.Evaluate(parameters, residual.data(), jacobians));
+    return residual;
+  };
+  Eigen::Matrix<double, 2, 7, Eigen::RowMajor> j_earlier, j_later;
+  double* jacobians[] = {j_earlier.data(), j_later.data()};
+  const Eigen::Vector2d residual = evaluate(scene.host, scene.target, jacobians);
+  EXPECT_GT(residual.norm(), 1.0);  // about 7 degrees against a 5 degree sigma
+  EXPECT_EQ(j_earlier.col(6).norm(), 0.0);
+  EXPECT_EQ(j_later.col(6).norm(), 0.0);
+  const factors::PoseManifold manifold;
+  const double step = 1e-6;
+  for (int i = 0; i < 6; ++i) {
+    Vector6d delta = Vector6d::Zero();
+    delta(i) = step;
+    PoseParameters plus, minus;
+    manifold.Plus(scene.host.data(), delta.data(), plus.data());
+    manifold.Plus(scene.host.data(), (-delta).eval().data(), minus.data());
+    const Eigen::Vector2d d_earlier = (evaluate(plus, scene.target, nullptr) - evaluate(minus, scene.target, nullptr)) / (2 * step);
+    manifold.Plus(scene.target.data(), delta.data(), plus.data());
+    manifold.Plus(scene.target.data(), (-delta).eval().data(), minus.data());
+    const Eigen::Vector2d d_later = (evaluate(scene.host, plus, nullptr) - evaluate(scene.host, minus, nullptr)) / (2 * step);
+    EXPECT_LT((j_earlier.col(i) - d_earlier).norm(), 1e-4 * (1.0 + d_earlier.norm())) << "earlier " << i;
+    EXPECT_LT((j_later.col(i) - d_later).norm(), 1e-4 * (1.0 + d_later.norm())) << "later " << i;
+  }
 }
 
 TEST(WindowFactors, PoseManifoldPlusAndMinusAreInverse) {

@@ -1,0 +1,55 @@
+#pragma once
+#include <ceres/sized_cost_function.h>
+
+#include "semantic_edge_vo/factors/pose_parameters.h"
+#include "semantic_edge_vo/forward_motion_prior.h"
+
+namespace semantic_edge_vo {
+namespace factors {
+
+/// ForwardMotionPrior between two keyframes of the window: the later keyframe's camera centre, seen
+/// from the earlier one, lies on the expected chord (the axis of travel turned by half their relative
+/// rotation). Residuals: its two components across the chord, divided by the keyframes' distance and
+/// sigma. The chord, the distance and so the weight are fixed at the start of the solve.
+class ForwardMotionFactor : public ceres::SizedCostFunction<2, 7, 7> {
+ public:
+  ForwardMotionFactor(const ForwardMotionOptions& options, const Eigen::Isometry3d& T_world_earlier,
+                      const Eigen::Isometry3d& T_world_later) {
+    const Eigen::Isometry3d T_earlier_later = T_world_earlier.inverse() * T_world_later;
+    const Eigen::AngleAxisd rotation(T_earlier_later.linear());
+    const Eigen::Vector3d chord = Eigen::AngleAxisd(0.5 * rotation.angle(), rotation.axis()) * options.axis();
+    const Eigen::Vector3d e1 = chord.unitOrthogonal();
+    const double scale = 1.0 / (options.sigma_deg * M_PI / 180.0 * std::max(T_earlier_later.translation().norm(), 1e-9));
+    across_.row(0) = scale * e1.transpose();
+    across_.row(1) = scale * chord.cross(e1).transpose();
+  }
+
+  bool Evaluate(const double* const* parameters, double* residuals, double** jacobians) const override {
+    const Eigen::Isometry3d T_world_earlier = fromParameters(parameters[0]), T_world_later = fromParameters(parameters[1]);
+    const Eigen::Matrix3d R_earlier_world = T_world_earlier.linear().transpose();
+    const Eigen::Vector3d centre = R_earlier_world * (T_world_later.translation() - T_world_earlier.translation());
+    Eigen::Map<Eigen::Vector2d> residual(residuals);
+    residual = across_ * centre;
+    if (!jacobians) return true;
+    // Twists in the camera frames (PoseManifold): the earlier one moves the centre by -v + centre x w,
+    // the later one by R_earlier_later v.
+    if (jacobians[0]) {
+      Eigen::Map<Eigen::Matrix<double, 2, 7, Eigen::RowMajor>> J(jacobians[0]);
+      J.leftCols<3>() = -across_;
+      J.middleCols<3>(3) = across_ * skew(centre);
+      J.col(6).setZero();
+    }
+    if (jacobians[1]) {
+      Eigen::Map<Eigen::Matrix<double, 2, 7, Eigen::RowMajor>> J(jacobians[1]);
+      J.leftCols<3>() = across_ * R_earlier_world * T_world_later.linear();
+      J.rightCols<4>().setZero();
+    }
+    return true;
+  }
+
+ private:
+  Eigen::Matrix<double, 2, 3> across_;  ///< the directions across the chord, scaled to residuals
+};
+
+}  // namespace factors
+}  // namespace semantic_edge_vo
