@@ -19,15 +19,13 @@ struct ForwardMotionOptions {
 /// poses bisects the heading change). Edges and forward motion leave the lateral and vertical
 /// direction of travel nearly unobservable: a shifted focus of expansion plus depths re-triangulated
 /// from it explain edge flow equally well, and the error feeds back through every new keyframe.
-/// This soft prior pins the direction. Residuals: the angles between the frame's camera centre in
-/// the keyframe and the expected chord (its components across the chord over its distance from the
-/// keyframe), over sigma. Angles, not distances: a prior on the sideways distance would be cheapest
-/// for a shorter travel and pull the monocular scale down.
+/// This soft prior pins the direction. Residuals: the components of the frame's camera centre in
+/// the keyframe orthogonal to the expected chord, divided by the travel the motion model predicts
+/// (a constant, so the residuals are linear in the centre) and by sigma.
 class ForwardMotionPrior {
  public:
   /// @param predicted_travel distance the constant-velocity guess travels (map units); the prior is
-  ///        inactive when it is not positive (no motion model yet) or the options are off, and fades
-  ///        out for frames much nearer the keyframe than that (their direction is noise)
+  ///        inactive when it is not positive (no motion model yet) or the options are off
   ForwardMotionPrior(const ForwardMotionOptions& options, double predicted_travel);
 
   bool active() const { return active_; }
@@ -37,8 +35,7 @@ class ForwardMotionPrior {
 
  private:
   Eigen::Vector3d axis_;
-  double weight_ = 0.0;     ///< 1 / sigma^2, rad^-2
-  double softening_ = 0.0;  ///< distance below which the angle fades out, map units
+  double weight_ = 0.0;  ///< 1 / (sigma^2 travel^2)
   bool active_ = false;
 };
 

@@ -14,8 +14,7 @@ ForwardMotionPrior::ForwardMotionPrior(const ForwardMotionOptions& options, doub
   active_ = options.sigma_deg > 0.0 && predicted_travel > 0.0;
   if (!active_) return;
   const double sigma = options.sigma_deg * M_PI / 180.0;
-  weight_ = 1.0 / (sigma * sigma);
-  softening_ = 0.1 * predicted_travel;
+  weight_ = 1.0 / (sigma * sigma * predicted_travel * predicted_travel);
 }
 
 double ForwardMotionPrior::evaluate(const Eigen::Isometry3d& T_cam_kf, Eigen::Matrix<double, 6, 6>* H, Vector6d* b) const {
@@ -26,18 +25,14 @@ double ForwardMotionPrior::evaluate(const Eigen::Isometry3d& T_cam_kf, Eigen::Ma
   const Eigen::AngleAxisd rotation(R_kf_cam);
   const Eigen::Vector3d chord = Eigen::AngleAxisd(0.5 * rotation.angle(), rotation.axis()) * axis_;
   const Eigen::Vector3d e1 = chord.unitOrthogonal(), e2 = chord.cross(e1);
-  // The residuals are angles (the centre's components across the chord over its distance), so that
-  // the prior does not favour shorter travel; softened near the keyframe, where the direction is noise.
-  const double length = std::sqrt(centre.squaredNorm() + softening_ * softening_);
   double cost = 0.0;
   for (const Eigen::Vector3d& e : {e1, e2}) {
-    const double r = e.dot(centre) / length;
+    const double r = e.dot(centre);
     cost += weight_ * r * r;
     if (!H) continue;
     // Left perturbation T <- exp(v, w) T moves the centre by -R_kf_cam v (rotation terms cancel).
-    const Eigen::Vector3d d_centre = (e - r * centre / length) / length;
     Vector6d J = Vector6d::Zero();
-    J.head<3>() = -R_kf_cam.transpose() * d_centre;
+    J.head<3>() = -R_kf_cam.transpose() * e;
     H->noalias() += weight_ * J * J.transpose();
     b->noalias() += weight_ * r * J;
   }

@@ -190,7 +190,7 @@ TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFi
   // cost there goes on through the finer levels, and the lower full-resolution cost of the two wins.
   const std::vector<Eigen::Isometry3d> candidates =
       guesses.empty() ? std::vector<Eigen::Isometry3d>{Eigen::Isometry3d::Identity()} : guesses;
-  // The travel the motion model predicts sets where the direction prior fades out (frame centre in the keyframe).
+  // The travel the motion model predicts scales the direction prior (frame centre in the keyframe).
   const double predicted_travel = (candidates[0].linear().transpose() * candidates[0].translation()).norm();
   const ForwardMotionPrior prior(options_.forward_motion, predicted_travel);
   const auto refine = [&](TrackingResult* attempt, int from_level) {
