@@ -85,5 +85,30 @@ INSTANTIATE_TEST_SUITE_P(Residuals, TrackerOnSyntheticCity,
                                               : info.param == Residuals::kCannyEdges ? "canny_edges" : "semantic_edges");
                          });
 
+TEST(Tracker, TriesTheOtherGuessesWhenTheFirstTracksWorseThanThePreviousFrame) {
+  synthetic::SyntheticSequence sequence(synthetic::SyntheticSequenceOptions::forScene(synthetic::SceneType::kCity, 3));
+  FrameBuilderOptions options;
+  options.use_field = false;
+  const FrameBuilder builder(options, sequence.camera(), ClassTable::cityscapes().names());
+  ExtractionError error;
+  const synthetic::SyntheticFrame truth_kf = sequence.frame(10), truth = sequence.frame(12);
+  Tracker tracker(TrackerOptions{});
+  tracker.setKeyframe(exactKeyframe(builder.build(10, 1.0, truth_kf.gray, ClassEvidence(), &error), truth_kf));
+  const auto frame = builder.build(12, 1.2, truth.gray, ClassEvidence(), &error);
+  const Eigen::Isometry3d T_true = truth.T_world_cam.inverse() * truth_kf.T_world_cam;
+  // The first guess is 4 m off to the side; the second is close.
+  Eigen::Isometry3d wrong = T_true;
+  wrong.translation() += Eigen::Vector3d(4.0, 0.0, 0.0);
+  const std::vector<Eigen::Isometry3d> guesses = {wrong, se3Exp(0.8 * se3Log(T_true))};
+
+  // Against a previous frame that tracked well, the first guess falls short and the others are tried.
+  const TrackingResult retried = tracker.track(*frame->pyramid, nullptr, guesses, 0.9);
+  EXPECT_EQ(retried.guess, 1);
+  EXPECT_LT((retried.T_cam_kf * T_true.inverse()).translation().norm(), 0.03);
+  // Against a previous frame that tracked as badly, the first guess is kept.
+  const TrackingResult kept = tracker.track(*frame->pyramid, nullptr, guesses, 0.0);
+  EXPECT_EQ(kept.guess, 0);
+}
+
 }  // namespace
 }  // namespace semantic_edge_vo
