@@ -13,6 +13,9 @@ struct ForwardMotionOptions {
 
   /// The unit axis of travel in the camera's optical frame.
   Eigen::Vector3d axis() const;
+  /// Expected direction of the chord from one pose to the next, in the first one's optical frame:
+  /// the axis turned by half the rotation between them (on a curve the chord bisects the heading change).
+  Eigen::Vector3d chord(const Eigen::Matrix3d& R_first_next) const;
 };
 
 /// A car's camera moves along its forward axis (no side slip; on a curve, the chord between two
@@ -34,7 +37,7 @@ class ForwardMotionPrior {
   double evaluate(const Eigen::Isometry3d& T_cam_kf, Eigen::Matrix<double, 6, 6>* H, Vector6d* b) const;
 
  private:
-  Eigen::Vector3d axis_;
+  ForwardMotionOptions options_;
   double weight_ = 0.0;  ///< 1 / (sigma^2 travel^2)
   bool active_ = false;
 };

@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -89,6 +90,10 @@ class NearestNeighborFieldView {
   /// Nearest seed of `layer` at `level`, within the truncation radius.
   bool nearest(int level, int layer, float x, float y, FieldMatch* match) const {
     return levels[static_cast<std::size_t>(level)].nearest(layer, x, y, truncation_radius, match);
+  }
+  /// ... within `radius` (at most the truncation radius): a small radius makes the lookup cheap.
+  bool nearestWithin(int level, int layer, float x, float y, float radius, FieldMatch* match) const {
+    return levels[static_cast<std::size_t>(level)].nearest(layer, x, y, std::min(radius, truncation_radius), match);
   }
   /// ONNF layer of a gradient direction (any length).
   int orientationBin(float normal_x, float normal_y) const;

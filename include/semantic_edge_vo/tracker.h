@@ -40,8 +40,10 @@ struct TrackingResult {
   int edge_residuals = 0, edge_inliers = 0;
   double photometric_rmse = 0.0;     ///< inliers, gray levels / px
   double edge_rmse = 0.0;            ///< inliers, full-resolution px
-  double inlierRatio() const { return static_cast<double>(photometric_inliers) / std::max(1, photometric_residuals); }
   double mean_flow = 0.0;            ///< mean displacement of the keyframe points, full-resolution px
+
+  /// Photometric inliers over photometric residuals (level 0).
+  double inlierRatio() const { return static_cast<double>(photometric_inliers) / std::max(1, photometric_residuals); }
 };
 
 /// Aligns frames to the active keyframe (paper III-C): photometric residuals on gradient magnitude

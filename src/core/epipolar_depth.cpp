@@ -13,8 +13,7 @@ bool hasSharedClassEdge(const NearestNeighborFieldView& field, std::uint32_t cla
   FieldMatch match;
   for (int layer = 0; layer < field.num_layers; ++layer) {
     const bool wanted = field.kind != FieldKind::kSnnf || ((class_mask >> layer) & 1u);
-    // Searching only as far as the radius (not the field's truncation radius) is what makes it cheap.
-    if (wanted && field.levels[0].nearest(layer, x, y, static_cast<float>(radius), &match)) return true;
+    if (wanted && field.nearestWithin(0, layer, x, y, static_cast<float>(radius), &match)) return true;
   }
   return false;
 }

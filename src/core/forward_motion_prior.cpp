@@ -9,8 +9,13 @@ Eigen::Vector3d ForwardMotionOptions::axis() const {
   return Eigen::Vector3d(std::sin(yaw) * std::cos(pitch), std::sin(pitch), std::cos(yaw) * std::cos(pitch));
 }
 
+Eigen::Vector3d ForwardMotionOptions::chord(const Eigen::Matrix3d& R_first_next) const {
+  const Eigen::AngleAxisd rotation(R_first_next);
+  return Eigen::AngleAxisd(0.5 * rotation.angle(), rotation.axis()) * axis();
+}
+
 ForwardMotionPrior::ForwardMotionPrior(const ForwardMotionOptions& options, double predicted_travel)
-    : axis_(options.axis()) {
+    : options_(options) {
   active_ = options.sigma_deg > 0.0 && predicted_travel > 0.0;
   if (!active_) return;
   const double sigma = options.sigma_deg * M_PI / 180.0;
@@ -21,9 +26,7 @@ double ForwardMotionPrior::evaluate(const Eigen::Isometry3d& T_cam_kf, Eigen::Ma
   if (!active_) return 0.0;
   const Eigen::Matrix3d R_kf_cam = T_cam_kf.linear().transpose();
   const Eigen::Vector3d centre = -R_kf_cam * T_cam_kf.translation();  // frame's camera centre in the keyframe
-  // Expected chord: the axis turned by half the rotation between keyframe and frame.
-  const Eigen::AngleAxisd rotation(R_kf_cam);
-  const Eigen::Vector3d chord = Eigen::AngleAxisd(0.5 * rotation.angle(), rotation.axis()) * axis_;
+  const Eigen::Vector3d chord = options_.chord(R_kf_cam);
   const Eigen::Vector3d e1 = chord.unitOrthogonal(), e2 = chord.cross(e1);
   double cost = 0.0;
   for (const Eigen::Vector3d& e : {e1, e2}) {

@@ -17,7 +17,7 @@ bool associate(const NearestNeighborFieldView& field, std::uint32_t class_mask, 
   FieldMatch match;
   for (int layer = 0; layer < field.num_layers; ++layer) {
     if (field.kind == FieldKind::kSnnf && !((class_mask >> layer) & 1u)) continue;
-    if (field.levels[0].nearest(layer, static_cast<float>(pixel.x()), static_cast<float>(pixel.y()), static_cast<float>(radius), &match) &&
+    if (field.nearestWithin(0, layer, static_cast<float>(pixel.x()), static_cast<float>(pixel.y()), static_cast<float>(radius), &match) &&
         (!found || match.distance < best->distance)) {
       *best = match;
       found = true;

@@ -16,8 +16,7 @@ class ForwardMotionFactor : public ceres::SizedCostFunction<2, 7, 7> {
   ForwardMotionFactor(const ForwardMotionOptions& options, const Eigen::Isometry3d& T_world_earlier,
                       const Eigen::Isometry3d& T_world_later) {
     const Eigen::Isometry3d T_earlier_later = T_world_earlier.inverse() * T_world_later;
-    const Eigen::AngleAxisd rotation(T_earlier_later.linear());
-    const Eigen::Vector3d chord = Eigen::AngleAxisd(0.5 * rotation.angle(), rotation.axis()) * options.axis();
+    const Eigen::Vector3d chord = options.chord(T_earlier_later.linear());
     const Eigen::Vector3d e1 = chord.unitOrthogonal();
     const double scale = 1.0 / (options.sigma_deg * M_PI / 180.0 * std::max(T_earlier_later.translation().norm(), 1e-9));
     across_.row(0) = scale * e1.transpose();
