@@ -61,6 +61,11 @@ class EdgeRegistration {
   /// truncation radius costs as much as a residual of that radius, so that costs at different poses
   /// compare even when points lose or gain their matches.
   double evaluate(const std::vector<ReferenceEdge>& edges, const NearestNeighborFieldView& field,
+                  const Eigen::Isometry3d& T_target_ref, std::vector<EdgeResidual>* out) const {
+    return evaluate(edges, 0, edges.size(), field, T_target_ref, out);
+  }
+  /// The same for edges[begin, end).
+  double evaluate(const std::vector<ReferenceEdge>& edges, std::size_t begin, std::size_t end, const NearestNeighborFieldView& field,
                   const Eigen::Isometry3d& T_target_ref, std::vector<EdgeResidual>* out) const;
   /// Residuals of every association at a pose (exposed for tests and diagnostics).
   std::vector<EdgeResidual> residuals(const std::vector<ReferenceEdge>& edges, const NearestNeighborFieldView& field,

@@ -83,6 +83,9 @@ class Odometry {
   /// The keyframe's points from its frame's candidates: prior depths from the previous keyframe's
   /// measured points, then an epipolar search against it.
   void triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const;
+  /// Epipolar search of each point of the host in the target, fused into its depth filter.
+  void measureDepths(const PyramidLevel& host, const PyramidLevel& target, const NearestNeighborFieldView* target_field,
+                     const Eigen::Isometry3d& T_target_host, std::vector<MapPoint>* points) const;
   /// Optimises the window at a new keyframe: in line, or started on its own thread.
   void optimizeWindow(int frame_index, FramePose* pose);
   /// Merges the deferred optimisation; the recent poses move with the active keyframe, whose points

@@ -76,10 +76,24 @@ class Tracker {
     std::vector<float> pattern_values;            ///< gradient magnitude of the keyframe there
     std::vector<int> point_index;                 ///< keyframe point of each pattern block
   };
-  /// Cost of the level at a pose; fills the normal equations and `result`'s counts when asked.
+  /// Sums over a slice of the residuals of a level: cost, counts and normal equations.
+  struct LevelSums {
+    double cost = 0.0, inlier_squares = 0.0, edge_squares = 0.0;
+    int residuals = 0, inliers = 0, in_view = 0, edge_residuals = 0, edge_inliers = 0;
+    Normal normal;
+    LevelSums& operator+=(const LevelSums& other);
+  };
+  /// Cost of the level at a pose; fills the normal equations and `result`'s counts when asked. The
+  /// residuals are evaluated in slices on both cores.
   double evaluate(int level, const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame,
                   const NearestNeighborFieldView* field, const ForwardMotionPrior& prior, Normal* normal,
                   TrackingResult* result) const;
+  /// Photometric residuals of reference blocks [begin, end).
+  void addPhotometric(int level, const Eigen::Isometry3d& T_cam_kf, const PyramidLevel& target, std::size_t begin, std::size_t end,
+                      bool with_normal, LevelSums* sums) const;
+  /// Edge residuals of edges_[begin, end).
+  void addEdges(int level, const Eigen::Isometry3d& T_cam_kf, const NearestNeighborFieldView& field, std::size_t begin,
+                std::size_t end, bool with_normal, LevelSums* sums) const;
   /// Levenberg-Marquardt at one level from `T`; returns the final cost.
   double optimizeLevel(int level, const ImagePyramid& frame, const NearestNeighborFieldView* field,
                        const ForwardMotionPrior& prior, Eigen::Isometry3d* T, int* iterations) const;

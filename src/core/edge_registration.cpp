@@ -5,10 +5,6 @@
 #include <sstream>
 
 namespace semantic_edge_vo {
-namespace {
-
-
-}  // namespace
 
 std::string EdgeRegistrationOptions::validate() const {
   std::ostringstream error;
@@ -70,13 +66,15 @@ bool EdgeRegistration::residualFor(const ReferenceEdge& edge, const Eigen::Vecto
   return true;
 }
 
-double EdgeRegistration::evaluate(const std::vector<ReferenceEdge>& edges, const NearestNeighborFieldView& field,
-                                  const Eigen::Isometry3d& T_target_ref, std::vector<EdgeResidual>* out) const {
+double EdgeRegistration::evaluate(const std::vector<ReferenceEdge>& edges, std::size_t begin, std::size_t end,
+                                  const NearestNeighborFieldView& field, const Eigen::Isometry3d& T_target_ref,
+                                  std::vector<EdgeResidual>* out) const {
   out->clear();
   const double unmatched_cost = huberCost(field.truncation_radius, options_.huber_threshold);
   double cost = 0.0;
   std::vector<int> layers;
-  for (const ReferenceEdge& edge : edges) {
+  for (std::size_t i = begin; i < end; ++i) {
+    const ReferenceEdge& edge = edges[i];
     layersOf(edge, T_target_ref, field, &layers);
     const Eigen::Vector3d p_target = T_target_ref * edge.point;
     for (int layer : layers) {

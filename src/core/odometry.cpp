@@ -1,5 +1,6 @@
 #include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/odometry.h"
+#include "semantic_edge_vo/parallel_slices.h"
 
 #include <algorithm>
 #include <chrono>
@@ -263,10 +264,7 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
 void Odometry::refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf) {
   const PyramidLevel& host = active_->frame->pyramid->level(0);
   const PyramidLevel& target = frame.pyramid->level(0);
-  DepthMeasurement measurement;
-  for (MapPoint& point : active_->points)
-    if (searchEpipolar(point, host, target, frame.fieldOrNull(), T_frame_kf, options_.epipolar, &measurement))
-      fuseDepth(measurement, &point);
+  measureDepths(host, target, frame.fieldOrNull(), T_frame_kf, &active_->points);
   tracker_.setKeyframe(active_);
 }
 
@@ -306,11 +304,17 @@ void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) c
   // Measure the new points at once against the previous keyframe: the widest baseline at hand.
   const Eigen::Isometry3d T_old_new = T_new_old.inverse();
   const PyramidLevel& host = keyframe->frame->pyramid->level(0);
-  const PyramidLevel& target = previous.frame->pyramid->level(0);
-  DepthMeasurement measurement;
-  for (MapPoint& point : keyframe->points)
-    if (searchEpipolar(point, host, target, previous.frame->fieldOrNull(), T_old_new, options_.epipolar, &measurement))
-      fuseDepth(measurement, &point);
+  measureDepths(host, previous.frame->pyramid->level(0), previous.frame->fieldOrNull(), T_old_new, &keyframe->points);
+}
+
+void Odometry::measureDepths(const PyramidLevel& host, const PyramidLevel& target, const NearestNeighborFieldView* target_field,
+                             const Eigen::Isometry3d& T_target_host, std::vector<MapPoint>* points) const {
+  // Each point is searched and filtered on its own: both cores, same result as in order.
+  forEachIndex(points->size(), [&](std::size_t i) {
+    DepthMeasurement measurement;
+    MapPoint& point = (*points)[i];
+    if (searchEpipolar(point, host, target, target_field, T_target_host, options_.epipolar, &measurement)) fuseDepth(measurement, &point);
+  });
 }
 
 void Odometry::optimizeWindow(int frame_index, FramePose* pose) {

@@ -2,15 +2,16 @@
 #include "semantic_edge_vo/residual_pattern.h"
 #include "semantic_edge_vo/tracker.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
 #include "semantic_edge_vo/nearest_neighbor_field.h"
+#include "semantic_edge_vo/parallel_slices.h"
 
 namespace semantic_edge_vo {
 namespace {
-
 
 /// Coarse levels use every n-th point: they only need to find the basin.
 int pointStride(int level) { return level >= 2 ? 1 << (level - 1) : 1; }
@@ -74,7 +75,36 @@ void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
 double Tracker::evaluate(int level, const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame,
                          const NearestNeighborFieldView* field, const ForwardMotionPrior& prior, Normal* normal,
                          TrackingResult* result) const {
-  const PyramidLevel& target = frame.level(level);
+  const bool with_edges = field && !edges_.empty() && options_.edge_weight > 0.0;
+  std::array<LevelSums, kParallelSlices> slices;
+  forEachSlice([&](int slice) {
+    LevelSums& sums = slices[static_cast<std::size_t>(slice)];
+    const auto [begin, end] = sliceRange(references_[static_cast<std::size_t>(level)].point_index.size(), slice);
+    addPhotometric(level, T_cam_kf, frame.level(level), begin, end, normal != nullptr, &sums);
+    if (with_edges) {
+      const auto [edge_begin, edge_end] = sliceRange(edges_.size(), slice);
+      addEdges(level, T_cam_kf, *field, edge_begin, edge_end, normal != nullptr, &sums);
+    }
+  });
+  LevelSums total;
+  for (const LevelSums& sums : slices) total += sums;  // in slice order: deterministic
+  if (normal) *normal = total.normal;
+  if (result) {
+    result->points_in_view = total.in_view;
+    result->photometric_residuals = total.residuals;
+    result->photometric_inliers = total.inliers;
+    result->photometric_rmse = total.inliers ? std::sqrt(total.inlier_squares / total.inliers) : 0.0;
+    if (with_edges) {
+      result->edge_residuals = total.edge_residuals;
+      result->edge_inliers = total.edge_inliers;
+      result->edge_rmse = total.edge_inliers ? std::sqrt(total.edge_squares / total.edge_inliers) * std::ldexp(1.0, level) : 0.0;
+    }
+  }
+  return total.cost + prior.evaluate(T_cam_kf, normal ? &normal->H : nullptr, normal ? &normal->b : nullptr);
+}
+
+void Tracker::addPhotometric(int level, const Eigen::Isometry3d& T_cam_kf, const PyramidLevel& target, std::size_t begin,
+                             std::size_t end, bool with_normal, LevelSums* sums) const {
   const LevelReference& reference = references_[static_cast<std::size_t>(level)];
   const Eigen::Matrix3f R = T_cam_kf.linear().cast<float>();
   const Eigen::Vector3f t = T_cam_kf.translation().cast<float>();
@@ -83,12 +113,9 @@ double Tracker::evaluate(int level, const Eigen::Isometry3d& T_cam_kf, const Ima
   const float max_x = static_cast<float>(target.camera.width) - 2.0f, max_y = static_cast<float>(target.camera.height) - 2.0f;
   const double k = options_.photometric_huber, inv_var = 1.0 / (options_.photometric_sigma * options_.photometric_sigma);
   const double out_of_view_cost = kPattern * huberCost(2.0 * k, k) * inv_var;
-
-  double cost = 0.0, inlier_squares = 0.0;
-  int residuals = 0, inliers = 0, in_view = 0;
   Eigen::Vector3f projected[kPattern];
   Eigen::Vector2f pixel[kPattern];
-  for (std::size_t block = 0; block < reference.point_index.size(); ++block) {
+  for (std::size_t block = begin; block < end; ++block) {
     bool visible = true;
     for (int j = 0; j < kPattern && visible; ++j) {
       projected[j] = R * reference.pattern_points[block * kPattern + j] + t;
@@ -97,60 +124,62 @@ double Tracker::evaluate(int level, const Eigen::Isometry3d& T_cam_kf, const Ima
       visible = z > 1e-3f && pixel[j].x() >= 1.0f && pixel[j].y() >= 1.0f && pixel[j].x() < max_x && pixel[j].y() < max_y;
     }
     if (!visible) {
-      cost += out_of_view_cost;
+      sums->cost += out_of_view_cost;
       continue;
     }
-    ++in_view;
+    ++sums->in_view;
     for (int j = 0; j < kPattern; ++j) {
       const float x = pixel[j].x(), y = pixel[j].y();
       const double r = sampleBilinear(target.gradient, x, y) - reference.pattern_values[block * kPattern + j];
       const double a = std::abs(r);
-      cost += huberCost(r, k) * inv_var;
-      ++residuals;
+      sums->cost += huberCost(r, k) * inv_var;
+      ++sums->residuals;
       if (a <= k) {
-        ++inliers;
-        inlier_squares += r * r;
+        ++sums->inliers;
+        sums->inlier_squares += r * r;
       }
-      if (!normal) continue;
+      if (!with_normal) continue;
       const double w = (a <= k ? 1.0 : k / a) * inv_var;
       const Eigen::Vector3d P = projected[j].cast<double>();
       const double gx = sampleBilinear(target.gradient_dx, x, y) * fx, gy = sampleBilinear(target.gradient_dy, x, y) * fy;
       const Eigen::Vector3d d_point(gx / P.z(), gy / P.z(), -(gx * P.x() + gy * P.y()) / (P.z() * P.z()));
       Vector6d J;
       J << d_point, P.cross(d_point);  // left perturbation: d(exp(xi) P) = v + w x P
-      normal->H.noalias() += w * J * J.transpose();
-      normal->b.noalias() += w * r * J;
+      sums->normal.H.noalias() += w * J * J.transpose();
+      sums->normal.b.noalias() += w * r * J;
     }
   }
-  if (result) {
-    result->points_in_view = in_view;
-    result->photometric_residuals = residuals;
-    result->photometric_inliers = inliers;
-    result->photometric_rmse = inliers ? std::sqrt(inlier_squares / inliers) : 0.0;
-  }
-  if (field && !edges_.empty() && options_.edge_weight > 0.0) {
-    std::vector<EdgeResidual> edge_residuals;
-    cost += edge_residuals_[static_cast<std::size_t>(level)].evaluate(edges_, *field, T_cam_kf, &edge_residuals);
-    int edge_inliers = 0;
-    double edge_squares = 0.0;
-    for (const EdgeResidual& r : edge_residuals) {
-      if (normal) {
-        normal->H.noalias() += r.weight * r.jacobian.transpose() * r.jacobian;
-        normal->b.noalias() += r.weight * r.value * r.jacobian.transpose();
-      }
-      if (std::abs(r.value) <= options_.edge_huber) {
-        ++edge_inliers;
-        edge_squares += r.value * r.value;
-      }
+}
+
+void Tracker::addEdges(int level, const Eigen::Isometry3d& T_cam_kf, const NearestNeighborFieldView& field, std::size_t begin,
+                       std::size_t end, bool with_normal, LevelSums* sums) const {
+  std::vector<EdgeResidual> residuals;
+  sums->cost += edge_residuals_[static_cast<std::size_t>(level)].evaluate(edges_, begin, end, field, T_cam_kf, &residuals);
+  for (const EdgeResidual& r : residuals) {
+    if (with_normal) {
+      sums->normal.H.noalias() += r.weight * r.jacobian.transpose() * r.jacobian;
+      sums->normal.b.noalias() += r.weight * r.value * r.jacobian.transpose();
     }
-    if (result) {
-      result->edge_residuals = static_cast<int>(edge_residuals.size());
-      result->edge_inliers = edge_inliers;
-      result->edge_rmse = edge_inliers ? std::sqrt(edge_squares / edge_inliers) * std::ldexp(1.0, level) : 0.0;
+    ++sums->edge_residuals;
+    if (std::abs(r.value) <= options_.edge_huber) {
+      ++sums->edge_inliers;
+      sums->edge_squares += r.value * r.value;
     }
   }
-  cost += prior.evaluate(T_cam_kf, normal ? &normal->H : nullptr, normal ? &normal->b : nullptr);
-  return cost;
+}
+
+Tracker::LevelSums& Tracker::LevelSums::operator+=(const LevelSums& other) {
+  cost += other.cost;
+  inlier_squares += other.inlier_squares;
+  edge_squares += other.edge_squares;
+  residuals += other.residuals;
+  inliers += other.inliers;
+  in_view += other.in_view;
+  edge_residuals += other.edge_residuals;
+  edge_inliers += other.edge_inliers;
+  normal.H += other.normal.H;
+  normal.b += other.normal.b;
+  return *this;
 }
 
 double Tracker::optimizeLevel(int level, const ImagePyramid& frame, const NearestNeighborFieldView* field,
