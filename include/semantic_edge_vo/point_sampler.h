@@ -18,8 +18,9 @@ struct PointSamplerOptions {
   int support_min_distance = 2;    ///< supportive pixels keep this far from edge pixels, pixels
   /// Classes whose points are not sampled when class evidence is at hand (comma-separated names;
   /// names missing from the class table are ignored). A vehicle driving along the road moves like
-  /// static structure at a wrong depth and drags the estimate with it.
-  std::string movable_classes = "person,rider,car,truck,bus,train,motorcycle,bicycle";
+  /// static structure at a wrong depth and drags the estimate with it; but parked cars are a street's
+  /// best near structure, so by default nothing is left out.
+  std::string movable_classes;
 
   std::string validate() const;
 };

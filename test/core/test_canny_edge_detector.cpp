@@ -121,6 +121,7 @@ TEST(PointSampler, LeavesOutMovableClasses) {
   PointSamplerOptions options;
   options.max_edge_points = 500;
   options.min_support_points = 200;
+  options.movable_classes = "car,truck";  // nothing is movable by default
   EXPECT_EQ(classMaskOf(table.names(), " car, bus ,no_such_class"), (1u << car) | (1u << table.indexOf("bus")));
 
   const PointSampler sampler(options, table.names());
