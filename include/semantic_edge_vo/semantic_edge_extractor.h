@@ -43,9 +43,9 @@ struct ExtractionError {
 ///  - canny: Canny edges, class mask 1 (the single class "edge").
 ///  - fused: edges from Canny or a learned edge map; class probabilities are read at the pixel and
 ///    `side_distance` px along the normal on both sides, the maximum per class counts (a boundary
-///    pixel sees both regions). Strength = edge strength x probability of the most probable class
-///    (the independence assumption of the paper's HED/SE x DeepLab fusion). Edges without any class
-///    evidence there (unlabeled, every probability 0) are dropped: their strength would be 0.
+///    pixel sees both regions). Strength stays the edge strength (the point sampler ranks by it;
+///    scaled by the class probability it preferred confidently labelled edges to strong ones). Edges
+///    without any class evidence there (unlabeled, every probability 0) are dropped.
 ///  - semantic_edges: the maximum over per-class edge probabilities is thinned; the class mask
 ///    comes from the per-class values at the pixel and its two neighbours along the normal.
 /// Only edge pixels and their sides are looked up, never full-resolution per-class products.

@@ -147,18 +147,21 @@ ExtractionError SemanticEdgeExtractor::extract(const cv::Mat& gray, const ClassE
 }
 
 bool SemanticEdgeExtractor::assignFusedClasses(const ClassEvidence& classes, EdgeSet* edges) const {
-  // Edges without any class evidence (unlabeled pixels, all probabilities 0) would get strength 0
-  // and no class: they are dropped, keeping the order of the others (kept <= i: in place).
+  // Edges without any class evidence (unlabeled pixels, all probabilities 0) get no class: they are
+  // dropped, keeping the order of the others (kept <= i: in place). The strength stays the edge's
+  // own: scaled by the class probability it ranked confidently labelled edges above strong ones in
+  // the point sample, and tracking needs strong ones (KITTI 06, ENet on the gray images, no edge
+  // residuals: Sim(3) ATE 0.93 m scaled, 0.05 m unscaled, medians over three point budgets).
   std::size_t kept = 0;
   const bool invalid = forEachClassMask(
       classes, *edges, static_cast<float>(options_.side_distance), static_cast<float>(options_.class_threshold), true,
-      [&](std::size_t i, std::uint32_t mask, float best) {
+      [&](std::size_t i, std::uint32_t mask, float) {
         if (!mask) return;
         edges->u[kept] = edges->u[i];
         edges->v[kept] = edges->v[i];
         edges->normal_x[kept] = edges->normal_x[i];
         edges->normal_y[kept] = edges->normal_y[i];
-        edges->strength[kept] = edges->strength[i] * best;
+        edges->strength[kept] = edges->strength[i];
         edges->class_mask[kept] = mask;
         ++kept;
       });

@@ -81,8 +81,11 @@ TEST(SemanticEdgeExtractor, FusedBoundaryPixelBelongsToBothSides) {
   EdgeSet edges;
   ASSERT_FALSE(SemanticEdgeExtractor(optionsFor(IntakeMode::kFused)).extract(boundaryImage(), classes, {}, &edges));
   expectBoundaryEdges(edges, (1u << kRoad) | (1u << kCar), 0.05);
-  // Strength is the Canny strength times the probability of the most probable class (0.9).
-  for (float s : edges.strength) EXPECT_LE(s, 0.9f + 1e-6f);
+  // Strength stays the Canny strength: the same edges as in canny mode, with the same strengths.
+  EdgeSet canny;
+  ASSERT_FALSE(SemanticEdgeExtractor(optionsFor(IntakeMode::kCanny)).extract(boundaryImage(), {}, {}, &canny));
+  ASSERT_EQ(edges.size(), canny.size());
+  for (std::size_t i = 0; i < edges.size(); ++i) EXPECT_EQ(edges.strength[i], canny.strength[i]) << "edge " << i;
 
   // 8-bit probabilities and the compact label form give the same classes.
   cv::Mat bytes;
