@@ -5,7 +5,7 @@
 
 #include "semantic_edge_vo/image_pyramid.h"
 #include "semantic_edge_vo/keyframe.h"
-#include "semantic_edge_vo/nearest_neighbor_field.h"
+#include "semantic_edge_vo/shared_class_edge_test.h"
 
 namespace semantic_edge_vo {
 
@@ -32,12 +32,12 @@ struct DepthMeasurement {
 
 /// Searches a host keyframe point along its epipolar line in a target frame (zero-mean intensity
 /// pattern warped by the candidate depth, as DSO's immature points do; only where the image gradient
-/// crosses the line; edge points only where the target has an edge of a
-/// class the point has, looked up in the target's SNNF) and returns the inverse depth of the best,
+/// crosses the line; edge points only where `target_edges`, when given, finds an edge of a class the
+/// point has, built with options.edge_radius from the target's field) and returns the inverse depth of the best,
 /// unique match with its variance. The point needs a prior (inverse_depth > 0 with its variance) that
 /// bounds the search. False when the frame adds no information or no unique match.
 bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const PyramidLevel& target,
-                    const NearestNeighborFieldView* target_field, const Eigen::Isometry3d& T_target_host,
+                    const SharedClassEdgeTest* target_edges, const Eigen::Isometry3d& T_target_host,
                     const EpipolarSearchOptions& options, DepthMeasurement* measurement);
 
 /// Fuses a measurement into the point's inverse-depth estimate (1-D Kalman filter). The first

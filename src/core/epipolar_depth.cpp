@@ -7,19 +7,6 @@
 #include <vector>
 
 namespace semantic_edge_vo {
-namespace {
-
-bool hasSharedClassEdge(const NearestNeighborFieldView& field, std::uint32_t class_mask, float x, float y, double radius) {
-  FieldMatch match;
-  for (int layer = 0; layer < field.num_layers; ++layer) {
-    const bool wanted = field.kind != FieldKind::kSnnf || ((class_mask >> layer) & 1u);
-    if (wanted && field.nearestWithin(0, layer, x, y, static_cast<float>(radius), &match)) return true;
-  }
-  return false;
-}
-
-}  // namespace
-
 std::string EpipolarSearchOptions::validate() const {
   std::ostringstream error;
   if (!(min_inverse_depth > 0 && max_inverse_depth > min_inverse_depth)) error << "need 0 < min_inverse_depth < max_inverse_depth";
@@ -31,7 +18,7 @@ std::string EpipolarSearchOptions::validate() const {
 }
 
 bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const PyramidLevel& target,
-                    const NearestNeighborFieldView* target_field, const Eigen::Isometry3d& T_target_host,
+                    const SharedClassEdgeTest* target_edges, const Eigen::Isometry3d& T_target_host,
                     const EpipolarSearchOptions& options, DepthMeasurement* measurement) {
   if (!host.camera.contains(point.u, point.v, 3.0)) return false;
   // Zero-mean intensity patterns: more distinctive along the line than gradient magnitude (an edge
@@ -94,7 +81,7 @@ bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const Pyram
     Eigen::Vector2d pixel;
     if (!pixelAt(rho, &pixel) || !target.camera.contains(pixel.x(), pixel.y(), 4.0)) continue;
     const float x = static_cast<float>(pixel.x()), y = static_cast<float>(pixel.y());
-    if (point.isEdge() && target_field && !hasSharedClassEdge(*target_field, point.class_mask, x, y, options.edge_radius)) continue;
+    if (point.isEdge() && target_edges && !(*target_edges)(point.class_mask, x, y)) continue;
     float values[kPattern];
     float mean = 0.0f;
     bool inside = true;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 namespace semantic_edge_vo {
@@ -309,11 +310,14 @@ void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) c
 
 void Odometry::measureDepths(const PyramidLevel& host, const PyramidLevel& target, const NearestNeighborFieldView* target_field,
                              const Eigen::Isometry3d& T_target_host, std::vector<MapPoint>* points) const {
+  std::optional<SharedClassEdgeTest> target_edges;
+  if (target_field) target_edges.emplace(*target_field, options_.epipolar.edge_radius);
+  const SharedClassEdgeTest* edge_test = target_edges ? &*target_edges : nullptr;
   // Each point is searched and filtered on its own: both cores, same result as in order.
   forEachIndex(points->size(), [&](std::size_t i) {
     DepthMeasurement measurement;
     MapPoint& point = (*points)[i];
-    if (searchEpipolar(point, host, target, target_field, T_target_host, options_.epipolar, &measurement)) fuseDepth(measurement, &point);
+    if (searchEpipolar(point, host, target, edge_test, T_target_host, options_.epipolar, &measurement)) fuseDepth(measurement, &point);
   });
 }
 

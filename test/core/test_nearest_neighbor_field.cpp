@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "semantic_edge_vo/nearest_neighbor_field.h"
+#include "semantic_edge_vo/shared_class_edge_test.h"
 
 namespace semantic_edge_vo {
 namespace {
@@ -81,6 +82,42 @@ TEST_P(FieldAgainstBruteForce, NearestIsExactAtEveryLevelAndLayer) {
 INSTANTIATE_TEST_SUITE_P(AllKinds, FieldAgainstBruteForce,
                          ::testing::Values(FieldKind::kAnnf, FieldKind::kOnnf, FieldKind::kSnnf),
                          [](const auto& info) { return std::string(toString(info.param)); });
+
+TEST_P(FieldAgainstBruteForce, SharedClassEdgeTestAgreesWithBruteForce) {
+  const int width = 320, height = 200, classes = 5;
+  const EdgeSet edges = randomEdges(3000, width, height, classes, 11);
+  FieldOptions options;
+  options.kind = GetParam();
+  options.cell_size = 4;
+  const NearestNeighborFieldData data =
+      buildNearestNeighborField(edges.view(), width, height, std::vector<std::string>(classes, "c"), options);
+  const NearestNeighborFieldView field = data.view();
+  const double radius = 1.5;
+  const SharedClassEdgeTest test(field, radius);
+
+  std::vector<std::uint32_t> layers_of(edges.size(), 0u);  // each edge's layers, as bits
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    for (int layer = 0; layer < field.num_layers; ++layer)
+      if (inLayer(edges, i, options.kind, layer, options.orientation_bins)) layers_of[i] |= 1u << layer;
+  const std::uint32_t all_layers = (1u << field.num_layers) - 1u;
+
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> qx(-3.0f, width + 3.0f), qy(-3.0f, height + 3.0f);
+  std::uniform_int_distribution<std::uint32_t> mask(1u, (1u << classes) - 1u);
+  int near = 0;
+  for (int q = 0; q < 20000; ++q) {
+    const float x = qx(rng), y = qy(rng);
+    const std::uint32_t class_mask = mask(rng);
+    const std::uint32_t wanted = options.kind == FieldKind::kSnnf ? class_mask : all_layers;
+    bool expected = false;
+    for (std::size_t i = 0; i < edges.size() && !expected; ++i)
+      expected = (layers_of[i] & wanted) && std::hypot(edges.u[i] - x, edges.v[i] - y) <= radius;
+    ASSERT_EQ(test(class_mask, x, y), expected) << "query " << x << "," << y << " classes " << class_mask;
+    near += expected;
+  }
+  EXPECT_GT(near, 2000) << "the test should exercise both answers";
+  EXPECT_LT(near, 18000) << "the test should exercise both answers";
+}
 
 TEST(NearestNeighborField, MultiClassPixelSeedsEachOfItsClassLayers) {
   EdgeSet edges;

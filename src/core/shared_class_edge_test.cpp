@@ -1,0 +1,65 @@
+#include "semantic_edge_vo/shared_class_edge_test.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "semantic_edge_vo/parallel_slices.h"
+
+namespace semantic_edge_vo {
+namespace {
+
+// A query anywhere within a pixel is at most half its diagonal from the pixel's centre.
+constexpr float kHalfDiagonal = 0.70711f;
+
+}  // namespace
+
+SharedClassEdgeTest::SharedClassEdgeTest(const NearestNeighborFieldView& field, double radius)
+    : field_(field), radius_(std::min(static_cast<float>(radius), field.truncation_radius)) {
+  if (field.levels.empty()) return;
+  const FieldLevelView& level = field.levels[0];
+  width_ = level.width;
+  height_ = level.height;
+  near_layers_.assign(static_cast<std::size_t>(width_) * height_, 0u);
+  const float reach = radius_ + kHalfDiagonal;
+  const int span = static_cast<int>(std::ceil(reach));
+  const std::size_t cells = static_cast<std::size_t>(level.grid_cols) * level.grid_rows;
+  const int layers = std::min(field.num_layers, 32);
+  // Slices of mask rows; each reads the buckets that reach into its rows and writes only its own.
+  forEachSlice([&](int slice) {
+    const auto [begin, end] = sliceRange(static_cast<std::size_t>(height_), slice);
+    const int row_begin = static_cast<int>(begin), row_end = static_cast<int>(end);
+    if (row_begin >= row_end) return;
+    const int grid_begin = std::max(0, (row_begin - span) / level.cell_size);
+    const int grid_end = std::min(level.grid_rows, (row_end + span) / level.cell_size + 1);
+    for (int layer = 0; layer < layers; ++layer) {
+      const std::uint32_t bit = 1u << layer;
+      const std::uint32_t* starts = level.cell_start.data() + static_cast<std::size_t>(layer) * cells;
+      for (std::uint32_t e = starts[static_cast<std::size_t>(grid_begin) * level.grid_cols];
+           e < starts[static_cast<std::size_t>(grid_end) * level.grid_cols]; ++e) {
+        const std::uint32_t s = level.entry_seed[e];
+        const float u = level.seed_u[s], v = level.seed_v[s];
+        const int cx = static_cast<int>(std::lround(u)), cy = static_cast<int>(std::lround(v));
+        for (int y = std::max(row_begin, cy - span); y <= std::min(row_end - 1, cy + span); ++y)
+          for (int x = std::max(0, cx - span); x <= std::min(width_ - 1, cx + span); ++x)
+            if ((x - u) * (x - u) + (y - v) * (y - v) <= reach * reach) near_layers_[static_cast<std::size_t>(y) * width_ + x] |= bit;
+      }
+    }
+  });
+}
+
+bool SharedClassEdgeTest::operator()(std::uint32_t class_mask, float x, float y) const {
+  const bool semantic = field_.kind == FieldKind::kSnnf;
+  const int px = static_cast<int>(std::lround(x)), py = static_cast<int>(std::lround(y));
+  if (px >= 0 && py >= 0 && px < width_ && py < height_ && field_.num_layers <= 32) {
+    const std::uint32_t near = near_layers_[static_cast<std::size_t>(py) * width_ + px];
+    if (!(semantic ? near & class_mask : near)) return false;  // no seed of a wanted layer that close
+  }
+  FieldMatch match;
+  for (int layer = 0; layer < field_.num_layers; ++layer) {
+    const bool wanted = !semantic || ((class_mask >> layer) & 1u);
+    if (wanted && field_.nearestWithin(0, layer, x, y, radius_, &match)) return true;
+  }
+  return false;
+}
+
+}  // namespace semantic_edge_vo
