@@ -106,6 +106,7 @@ class Odometry {
   OdometryState state_ = OdometryState::kInitializing;
   bool recovering_ = false;
   std::vector<std::shared_ptr<const OdometryFrame>> waiting_;  ///< frames since the initialisation started
+  std::vector<double> waiting_ms_;  ///< the initialiser's time on each waiting frame, ms (reported as its tracking time)
   std::deque<std::shared_ptr<Keyframe>> keyframes_;
   std::shared_ptr<Keyframe> active_;
   int next_keyframe_id_ = 0;

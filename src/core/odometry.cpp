@@ -105,23 +105,27 @@ std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFra
 
 std::vector<FramePose> Odometry::flush() {
   std::vector<FramePose> poses;
-  for (const auto& frame : waiting_) {
+  for (std::size_t k = 0; k < waiting_.size(); ++k) {
     FramePose pose;
-    pose.index = frame->index;
-    pose.time = frame->time;
+    pose.index = waiting_[k]->index;
+    pose.time = waiting_[k]->time;
     pose.T_world_cam = T_world_last_;
     pose.state = OdometryState::kInitializing;
+    pose.tracking_ms = waiting_ms_[k];
     poses.push_back(pose);
   }
   waiting_.clear();
+  waiting_ms_.clear();
   return poses;
 }
 
 void Odometry::startInitialization(const std::shared_ptr<const OdometryFrame>& frame) {
+  const auto start = std::chrono::steady_clock::now();
   waiting_ = {frame};
   std::vector<Eigen::Vector2f> pixels;
   for (const MapPoint& point : frame->candidates) pixels.emplace_back(point.u, point.v);
   initializer_.reset(gray8(*frame), pixels);
+  waiting_ms_ = {elapsedMs(start)};
 }
 
 std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const OdometryFrame>& frame) {
@@ -133,16 +137,21 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
   }
   waiting_.push_back(frame);
   const TwoViewInitializer::Status status = initializer_.add(gray8(*frame));
+  waiting_ms_.push_back(elapsedMs(start));
   if (status == TwoViewInitializer::Status::kNeedMoreFrames) return {};
   if (status == TwoViewInitializer::Status::kFailed) {
     // The waiting frames get untrusted predictions; the newest starts the next attempt.
     const std::shared_ptr<const OdometryFrame> newest = waiting_.back();
+    const double newest_ms = waiting_ms_.back();
     waiting_.pop_back();
+    waiting_ms_.pop_back();
     std::vector<FramePose> poses = flush();
     for (const FramePose& pose : poses) remember(pose);
     startInitialization(newest);
+    waiting_ms_.front() += newest_ms;
     return poses;
   }
+  const auto keyframe_start = std::chrono::steady_clock::now();
 
   // The first waiting frame becomes the first keyframe, anchored where the odometry predicts it
   // (identity at the very start), so that odom stays continuous after a loss.
@@ -187,7 +196,8 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
   first.recovered = recovering_;
   first.keyframe = true;
   first.keyframe_id = keyframe->id;
-  first.mapping_ms = elapsedMs(start);
+  first.tracking_ms = waiting_ms_.front();
+  first.mapping_ms = elapsedMs(keyframe_start);
   poses.push_back(first);
   remember(first);
   const std::size_t n = waiting_.size();
@@ -203,12 +213,15 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
     pose.state = result.ok ? OdometryState::kTracking : OdometryState::kLost;
     pose.keyframe_id = keyframe->id;
     pose.tracking = result;
-    pose.tracking_ms = elapsedMs(frame_start);
+    pose.tracking_ms = waiting_ms_[j] + elapsedMs(frame_start);
+    const auto mapping_start = std::chrono::steady_clock::now();
     if (result.ok) refineDepths(*waiting_[j], result.T_cam_kf);
+    pose.mapping_ms = elapsedMs(mapping_start);
     poses.push_back(pose);
     remember(pose);
   }
   waiting_.clear();
+  waiting_ms_.clear();
   state_ = OdometryState::kTracking;
   recovering_ = false;
   frames_since_keyframe_ = static_cast<int>(n) - 1;
