@@ -48,7 +48,7 @@ class TwoViewInitializer {
 
   InitializerOptions options_;
   PinholeCamera camera_;
-  cv::Mat previous_;
+  std::vector<cv::Mat> previous_;  ///< KLT pyramid of the previous frame
   std::vector<cv::Point2f> first_, current_;
   std::vector<int> alive_;  ///< index into the reset() pixels of each tracked point
   std::size_t pixel_count_ = 0;

@@ -21,8 +21,6 @@ cv::Mat gray8(const OdometryFrame& frame) {
   return gray;
 }
 
-
-
 /// A measured inverse depth at a pixel of the keyframe that receives it.
 struct DepthSample {
   Eigen::Vector2d pixel;

@@ -12,6 +12,15 @@
 namespace semantic_edge_vo {
 namespace {
 
+const cv::Size kWindow(21, 21);
+constexpr int kMaxLevel = 3;
+
+/// KLT's image pyramid with derivatives, built once per frame and used in both directions.
+std::vector<cv::Mat> kltPyramid(const cv::Mat& gray) {
+  std::vector<cv::Mat> pyramid;
+  cv::buildOpticalFlowPyramid(gray, pyramid, kWindow, kMaxLevel, true);
+  return pyramid;
+}
 
 }  // namespace
 
@@ -25,7 +34,7 @@ std::string InitializerOptions::validate() const {
 }
 
 void TwoViewInitializer::reset(const cv::Mat& gray, const std::vector<Eigen::Vector2f>& pixels) {
-  previous_ = gray;
+  previous_ = kltPyramid(gray);
   first_.clear();
   alive_.clear();
   for (std::size_t i = 0; i < pixels.size(); ++i) {
@@ -46,9 +55,9 @@ TwoViewInitializer::Status TwoViewInitializer::add(const cv::Mat& gray) {
   std::vector<cv::Point2f> next, back;
   std::vector<std::uint8_t> status, back_status;
   std::vector<float> error;
-  const cv::Size window(21, 21);
-  cv::calcOpticalFlowPyrLK(previous_, gray, current_, next, status, error, window, 3);
-  cv::calcOpticalFlowPyrLK(gray, previous_, next, back, back_status, error, window, 3);
+  std::vector<cv::Mat> pyramid = kltPyramid(gray);
+  cv::calcOpticalFlowPyrLK(previous_, pyramid, current_, next, status, error, kWindow, kMaxLevel);
+  cv::calcOpticalFlowPyrLK(pyramid, previous_, next, back, back_status, error, kWindow, kMaxLevel);
   std::size_t kept = 0;
   for (std::size_t i = 0; i < current_.size(); ++i) {
     const bool inside = next[i].x >= 0 && next[i].y >= 0 && next[i].x < gray.cols && next[i].y < gray.rows;
@@ -61,7 +70,7 @@ TwoViewInitializer::Status TwoViewInitializer::add(const cv::Mat& gray) {
   first_.resize(kept);
   current_.resize(kept);
   alive_.resize(kept);
-  previous_ = gray;
+  previous_ = std::move(pyramid);
   if (static_cast<int>(kept) < options_.min_points) return Status::kFailed;
 
   std::vector<double> flow;
