@@ -105,8 +105,12 @@ class Odometry {
   TwoViewInitializer initializer_;
   OdometryState state_ = OdometryState::kInitializing;
   bool recovering_ = false;
-  std::vector<std::shared_ptr<const OdometryFrame>> waiting_;  ///< frames since the initialisation started
-  std::vector<double> waiting_ms_;  ///< the initialiser's time on each waiting frame, ms (reported as its tracking time)
+  /// A frame since the initialisation started, with the initialiser's time on it (reported as its tracking time).
+  struct WaitingFrame {
+    std::shared_ptr<const OdometryFrame> frame;
+    double ms = 0.0;
+  };
+  std::vector<WaitingFrame> waiting_;
   std::deque<std::shared_ptr<Keyframe>> keyframes_;
   std::shared_ptr<Keyframe> active_;
   int next_keyframe_id_ = 0;

@@ -103,27 +103,26 @@ std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFra
 
 std::vector<FramePose> Odometry::flush() {
   std::vector<FramePose> poses;
-  for (std::size_t k = 0; k < waiting_.size(); ++k) {
+  for (const WaitingFrame& waiting : waiting_) {
     FramePose pose;
-    pose.index = waiting_[k]->index;
-    pose.time = waiting_[k]->time;
+    pose.index = waiting.frame->index;
+    pose.time = waiting.frame->time;
     pose.T_world_cam = T_world_last_;
     pose.state = OdometryState::kInitializing;
-    pose.tracking_ms = waiting_ms_[k];
+    pose.tracking_ms = waiting.ms;
     poses.push_back(pose);
   }
   waiting_.clear();
-  waiting_ms_.clear();
   return poses;
 }
 
 void Odometry::startInitialization(const std::shared_ptr<const OdometryFrame>& frame) {
   const auto start = std::chrono::steady_clock::now();
-  waiting_ = {frame};
+  waiting_ = {{frame, 0.0}};
   std::vector<Eigen::Vector2f> pixels;
   for (const MapPoint& point : frame->candidates) pixels.emplace_back(point.u, point.v);
   initializer_.reset(gray8(*frame), pixels);
-  waiting_ms_ = {elapsedMs(start)};
+  waiting_.front().ms = elapsedMs(start);
 }
 
 std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const OdometryFrame>& frame) {
@@ -133,20 +132,17 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
     startInitialization(frame);
     return {};
   }
-  waiting_.push_back(frame);
   const TwoViewInitializer::Status status = initializer_.add(gray8(*frame));
-  waiting_ms_.push_back(elapsedMs(start));
+  waiting_.push_back({frame, elapsedMs(start)});
   if (status == TwoViewInitializer::Status::kNeedMoreFrames) return {};
   if (status == TwoViewInitializer::Status::kFailed) {
     // The waiting frames get untrusted predictions; the newest starts the next attempt.
-    const std::shared_ptr<const OdometryFrame> newest = waiting_.back();
-    const double newest_ms = waiting_ms_.back();
+    const WaitingFrame newest = waiting_.back();
     waiting_.pop_back();
-    waiting_ms_.pop_back();
     std::vector<FramePose> poses = flush();
     for (const FramePose& pose : poses) remember(pose);
-    startInitialization(newest);
-    waiting_ms_.front() += newest_ms;
+    startInitialization(newest.frame);
+    waiting_.front().ms += newest.ms;
     return poses;
   }
   const auto keyframe_start = std::chrono::steady_clock::now();
@@ -167,8 +163,8 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
   auto keyframe = std::make_shared<Keyframe>();
   keyframe->id = next_keyframe_id_++;
   keyframe->T_world_cam = T_world_first;
-  keyframe->frame = waiting_.front();
-  keyframe->points = waiting_.front()->candidates;
+  keyframe->frame = waiting_.front().frame;
+  keyframe->points = keyframe->frame->candidates;
   const std::vector<double>& inverse_depths = initializer_.inverseDepths();
   for (std::size_t i = 0; i < keyframe->points.size(); ++i) {
     if (!(inverse_depths[i] > 0.0)) continue;
@@ -194,7 +190,7 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
   first.recovered = recovering_;
   first.keyframe = true;
   first.keyframe_id = keyframe->id;
-  first.tracking_ms = waiting_ms_.front();
+  first.tracking_ms = waiting_.front().ms;
   first.mapping_ms = elapsedMs(keyframe_start);
   poses.push_back(first);
   remember(first);
@@ -202,24 +198,24 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
   for (std::size_t j = 1; j < n; ++j) {
     const auto frame_start = std::chrono::steady_clock::now();
     const Eigen::Isometry3d guess = se3Exp(static_cast<double>(j) / static_cast<double>(n - 1) * se3Log(T_last_first));
-    const TrackingResult result = tracker_.track(*waiting_[j]->pyramid, waiting_[j]->fieldOrNull(), {guess});
+    const OdometryFrame& frame_j = *waiting_[j].frame;
+    const TrackingResult result = tracker_.track(*frame_j.pyramid, frame_j.fieldOrNull(), {guess});
     FramePose pose;
-    pose.index = waiting_[j]->index;
-    pose.time = waiting_[j]->time;
+    pose.index = frame_j.index;
+    pose.time = frame_j.time;
     pose.T_world_cam = orthonormalized(T_world_first * result.T_cam_kf.inverse());
     pose.trusted = result.ok;
     pose.state = result.ok ? OdometryState::kTracking : OdometryState::kLost;
     pose.keyframe_id = keyframe->id;
     pose.tracking = result;
-    pose.tracking_ms = waiting_ms_[j] + elapsedMs(frame_start);
+    pose.tracking_ms = waiting_[j].ms + elapsedMs(frame_start);
     const auto mapping_start = std::chrono::steady_clock::now();
-    if (result.ok) refineDepths(*waiting_[j], result.T_cam_kf);
+    if (result.ok) refineDepths(frame_j, result.T_cam_kf);
     pose.mapping_ms = elapsedMs(mapping_start);
     poses.push_back(pose);
     remember(pose);
   }
   waiting_.clear();
-  waiting_ms_.clear();
   state_ = OdometryState::kTracking;
   recovering_ = false;
   frames_since_keyframe_ = static_cast<int>(n) - 1;
