@@ -24,4 +24,8 @@ PosePairs associateByIndex(const Trajectory& gt, const Trajectory& est);
 std::string associateByStamps(const Trajectory& gt, const Trajectory& est, double max_time_difference,
                               PosePairs* pairs);
 
+/// The pairs whose ground-truth frame is `first_frame` or later (for a ground truth that is not
+/// measured at the start, as KITTI 06's first 12 poses, which are extrapolated at constant velocity).
+PosePairs fromGroundTruthFrame(const PosePairs& pairs, std::size_t first_frame);
+
 }  // namespace semantic_edge_vo

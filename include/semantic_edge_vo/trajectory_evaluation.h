@@ -122,4 +122,10 @@ std::vector<Eigen::Vector3d> positionsOf(const std::vector<Eigen::Isometry3d>& p
 /// Length of the path through the positions, metres.
 double pathLength(const std::vector<Eigen::Vector3d>& positions);
 
+/// Distances of the positions from the constant-speed straight line closest to them (least squares
+/// in a + b k, k = each position's frame number), metres: what a motion model without vision scores
+/// after alignment, the reference an estimate must beat on a nearly straight road. Needs two distinct
+/// frame numbers.
+ErrorStatistics straightLineErrors(const std::vector<Eigen::Vector3d>& positions, const std::vector<std::size_t>& frames);
+
 }  // namespace semantic_edge_vo

@@ -23,6 +23,7 @@ struct TrajectoryEvaluation {
   double gt_length_m = 0.0;  ///< ground-truth path length over them
   AteResult sim3_ate;        ///< whole trajectory, Umeyama Sim(3)
   AteResult se3_ate;         ///< whole trajectory, Umeyama SE(3)
+  ErrorStatistics straight_line_m;  ///< the ground truth against its closest constant-speed straight line (reference)
   SegmentedAteResult paper_ate;
   std::string paper_ate_unavailable;
   RpeResult rpe;  ///< estimated translations scaled by the Sim(3) scale

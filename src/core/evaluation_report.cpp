@@ -137,7 +137,8 @@ void markdownAte(const TrajectoryEvaluation& e, const AteProtocolOptions& option
   else md << "| " << paper << " | not available: " << cell(e.paper_ate_unavailable) << " | | | | |\n";
   md << statisticsRow("Sim(3) Umeyama, whole trajectory (scale " + figure(e.sim3_ate.alignment.scale) + ")",
                       e.sim3_ate.error_m)
-     << statisticsRow("SE(3) Umeyama, whole trajectory", e.se3_ate.error_m) << "\n";
+     << statisticsRow("SE(3) Umeyama, whole trajectory", e.se3_ate.error_m)
+     << statisticsRow("reference: constant-speed straight line closest to the ground truth", e.straight_line_m) << "\n";
 }
 
 void markdownRelative(const TrajectoryEvaluation& e, const TrajectoryEvaluationOptions& options,
@@ -240,7 +241,8 @@ std::string evaluationJson(const EvaluationSources& sources, const TrajectoryEva
       {"gt_length_m", jsonNumber(evaluation.gt_length_m)},
       {"ate_m", jsonObject({{"paper", jsonPaperAte(evaluation, options.paper_ate, 2)},
                             {"sim3", jsonAte(evaluation.sim3_ate, 2)},
-                            {"se3", jsonAte(evaluation.se3_ate, 2)}},
+                            {"se3", jsonAte(evaluation.se3_ate, 2)},
+                            {"straight_line_reference", jsonObject({{"statistics", jsonStatistics(evaluation.straight_line_m)}}, 2)}},
                            1)},
       {"rpe", jsonObject({{"unavailable", jsonAvailability(evaluation.rpe_unavailable)},
                           {"delta_frames", std::to_string(options.rpe_delta_frames)},

@@ -244,4 +244,28 @@ double pathLength(const std::vector<Eigen::Vector3d>& positions) {
   return length;
 }
 
+ErrorStatistics straightLineErrors(const std::vector<Eigen::Vector3d>& positions, const std::vector<std::size_t>& frames) {
+  const std::size_t n = std::min(positions.size(), frames.size());
+  if (n < 2) return ErrorStatistics();
+  double mean_k = 0.0;
+  Eigen::Vector3d mean_p = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    mean_k += static_cast<double>(frames[i]) / static_cast<double>(n);
+    mean_p += positions[i] / static_cast<double>(n);
+  }
+  double spread = 0.0;
+  Eigen::Vector3d covariance = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double dk = static_cast<double>(frames[i]) - mean_k;
+    spread += dk * dk;
+    covariance += dk * (positions[i] - mean_p);
+  }
+  if (!(spread > 0.0)) return ErrorStatistics();
+  const Eigen::Vector3d velocity = covariance / spread;
+  std::vector<double> errors;
+  for (std::size_t i = 0; i < n; ++i)
+    errors.push_back((positions[i] - mean_p - (static_cast<double>(frames[i]) - mean_k) * velocity).norm());
+  return errorStatistics(errors);
+}
+
 }  // namespace semantic_edge_vo

@@ -37,12 +37,15 @@ const char* const kUsage = R"(usage: evaluate_trajectory GT EST [options]
   --discard N        paper ATE: poses discarded at the start (default 10)
   --segment-frames N paper ATE: frames per Sim(3)-aligned segment (default 200)
   --rpe-delta N      RPE frame delta (default 1)
+  --first-frame N    evaluate the pairs from ground-truth frame N on (default 0: all); e.g. 12 for
+                     KITTI 06, whose first 12 ground-truth poses are extrapolated, not measured
 )";
 
 struct Arguments {
   std::string gt_path, est_path, format = "auto", output = ".", bag_topic = "/odometry", bag_extrinsic = "optical";
   std::string gt_times, associate = "auto";
   double max_time_diff = 0.01, est_time_offset = 0.0;
+  int first_frame = 0;
   sevo::TrajectoryEvaluationOptions options;
 };
 
@@ -82,6 +85,7 @@ std::string parseArguments(int argc, char** argv, Arguments* args) {
     else if (flag == "--discard") ok = parseInteger(value, &args->options.paper_ate.discard_first_poses);
     else if (flag == "--segment-frames") ok = parseInteger(value, &args->options.paper_ate.segment_frames);
     else if (flag == "--rpe-delta") ok = parseInteger(value, &args->options.rpe_delta_frames);
+    else if (flag == "--first-frame") ok = parseInteger(value, &args->first_frame) && args->first_frame >= 0;
     else return "unknown option " + flag;
     if (!ok) return "bad value '" + value + "' for " + flag;
   }
@@ -152,6 +156,19 @@ std::string associate(const Arguments& args, const sevo::Trajectory& gt, const s
   return "";
 }
 
+/// Keeps the pairs from --first-frame on and says so in the description.
+std::string keepFromFirstFrame(const Arguments& args, sevo::PosePairs* pairs, std::string* description) {
+  if (args.first_frame == 0) return "";
+  const std::size_t associated = pairs->gt.size();
+  *pairs = sevo::fromGroundTruthFrame(*pairs, static_cast<std::size_t>(args.first_frame));
+  if (pairs->gt.size() < 3)
+    return "--first-frame " + std::to_string(args.first_frame) + " leaves " + std::to_string(pairs->gt.size()) +
+           " of " + std::to_string(associated) + " associated pairs; need at least 3";
+  *description += "; evaluated from ground-truth frame " + std::to_string(args.first_frame) + " on (" +
+                  std::to_string(pairs->gt.size()) + " of " + std::to_string(associated) + " pairs)";
+  return "";
+}
+
 std::string writeOutputs(const Arguments& args, const sevo::EvaluationSources& sources, const sevo::PosePairs& pairs,
                          const sevo::TrajectoryEvaluation& evaluation, const std::string& markdown) {
   std::error_code code;
@@ -194,6 +211,7 @@ int main(int argc, char** argv) {
   sevo::TrajectoryEvaluation evaluation;
   error = readInputs(args, &gt, &est, &sources);
   if (error.empty()) error = associate(args, gt, est, &pairs, &sources.association);
+  if (error.empty()) error = keepFromFirstFrame(args, &pairs, &sources.association);
   if (error.empty()) error = sevo::evaluateTrajectory(pairs, args.options, &evaluation);
   if (!error.empty()) {
     std::cerr << "evaluate_trajectory: " << error << "\n";

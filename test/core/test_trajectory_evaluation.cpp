@@ -149,6 +149,19 @@ TEST(TrajectoryEvaluation, RotationAngle) {
     EXPECT_NEAR(rotationAngle(rotationAbout({1, 2, 3}, degrees * kDeg)), degrees * kDeg, 1e-12) << degrees;
 }
 
+TEST(TrajectoryEvaluation, StraightLineReference) {
+  // On a constant-speed line the reference is exact; frame numbers, not pair order, set the speed.
+  const std::vector<Eigen::Vector3d> line = {{0, 0, 0}, {0, 0, 1}, {0, 0, 3}, {0, 0, 4}};
+  EXPECT_LT(straightLineErrors(line, {0, 1, 3, 4}).rmse, 1e-12);
+  EXPECT_GT(straightLineErrors(line, {0, 1, 2, 3}).rmse, 0.1);
+  // A symmetric weave of +-0.5 m about the line: the closest line is the axis itself.
+  const std::vector<Eigen::Vector3d> weave = {{0.5, 0, 0}, {-0.5, 0, 1}, {-0.5, 0, 2}, {0.5, 0, 3}};
+  const ErrorStatistics s = straightLineErrors(weave, {0, 1, 2, 3});
+  EXPECT_EQ(s.count, 4u);
+  EXPECT_NEAR(s.rmse, 0.5, 1e-12);
+  EXPECT_EQ(straightLineErrors(weave, {2, 2, 2, 2}).count, 0u);  // no speed to fit
+}
+
 TEST(TrajectoryEvaluation, AssociatesByIndexAndByStamps) {
   Trajectory gt, est;
   gt.poses = straightLine(10, 1.0);
@@ -162,6 +175,13 @@ TEST(TrajectoryEvaluation, AssociatesByIndexAndByStamps) {
   EXPECT_EQ(pairs.gt_index, (std::vector<std::size_t>{0, 1, 3, 6, 9}));
   ASSERT_EQ(pairs.est.size(), 5u);
   EXPECT_DOUBLE_EQ(pairs.est[2].translation().z(), 6.0);  // the estimate pose stamped 0.301
+
+  const PosePairs later = fromGroundTruthFrame(pairs, 3);
+  EXPECT_EQ(later.gt_index, (std::vector<std::size_t>{3, 6, 9}));
+  ASSERT_EQ(later.est.size(), 3u);
+  EXPECT_DOUBLE_EQ(later.est[0].translation().z(), 6.0);
+  EXPECT_DOUBLE_EQ(later.gt[0].translation().z(), 3.0);
+  EXPECT_TRUE(fromGroundTruthFrame(pairs, 10).gt.empty());
 
   for (double& stamp : est.stamps) stamp += 100.0;
   EXPECT_NE(associateByStamps(gt, est, 0.01, &pairs).find("no estimate stamp lies within"), std::string::npos);
