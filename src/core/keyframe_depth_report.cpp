@@ -1,0 +1,65 @@
+#include "semantic_edge_vo/keyframe_depth_report.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "semantic_edge_vo/kitti_sequence.h"
+#include "semantic_edge_vo/robust_statistics.h"
+#include "semantic_edge_vo/synthetic/sequence_formats.h"
+
+namespace semantic_edge_vo {
+
+std::string KeyframeDepthReport::update(const std::deque<std::shared_ptr<Keyframe>>& keyframes) {
+  if (keyframes.empty() || keyframes.back() == newest_) return "";
+  // A new keyframe: the one it replaces has had all its frames (after a loss it may be gone already).
+  std::string error;
+  if (newest_) error = check(*newest_, true);
+  newest_ = keyframes.back();
+  if (error.empty()) error = check(*newest_, false);
+  return error;
+}
+
+std::string KeyframeDepthReport::check(const Keyframe& keyframe, bool retired) {
+  const std::string path = kittiFramePath(depth_folder_, static_cast<std::size_t>(keyframe.frame->index));
+  const cv::Mat encoded = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (encoded.empty() || encoded.type() != CV_16UC1) return path + ": not a 16-bit depth PNG";
+  rows_.push_back({keyframe.frame->index, retired, checkDepths(keyframe.points, synthetic::decodeDepth(encoded))});
+  return "";
+}
+
+std::string KeyframeDepthReport::table() const {
+  std::ostringstream out;
+  out << "# keyframe depths against the true depths: wrong = more than 20 % outside the true range around the\n"
+         "# pixel, after dividing by the map scale (median estimated / true depth)\n"
+         "# frame stage edges edges_wrong support support_wrong scale median_error\n";
+  for (const Row& row : rows_)
+    out << row.frame << ' ' << (row.retired ? "retired" : "new") << ' ' << row.check.edges << ' ' << row.check.edges_wrong
+        << ' ' << row.check.support << ' ' << row.check.support_wrong << ' ' << row.check.scale << ' '
+        << row.check.median_error << '\n';
+  return out.str();
+}
+
+std::string KeyframeDepthReport::summary() const {
+  std::ostringstream out;
+  for (const bool retired : {false, true}) {
+    std::vector<double> edges, support, errors;
+    for (const Row& row : rows_) {
+      if (row.retired != retired) continue;
+      if (row.check.edges) edges.push_back(row.check.edgesWrongFraction());
+      if (row.check.support) support.push_back(row.check.supportWrongFraction());
+      if (row.check.edges + row.check.support) errors.push_back(row.check.median_error);
+    }
+    if (errors.empty()) continue;
+    char line[200];
+    std::snprintf(line, sizeof(line), "%s%s %zu: %.0f %% of edge and %.0f %% of supportive points wrong, median error %.1f %%",
+                  out.tellp() > 0 ? "; " : "", retired ? "retired" : "new", errors.size(),
+                  edges.empty() ? 0.0 : 100.0 * median(edges), support.empty() ? 0.0 : 100.0 * median(support),
+                  100.0 * median(errors));
+    out << line;
+  }
+  return out.str();
+}
+
+}  // namespace semantic_edge_vo
