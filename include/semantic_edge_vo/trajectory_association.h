@@ -12,6 +12,9 @@ namespace semantic_edge_vo {
 struct PosePairs {
   std::vector<Eigen::Isometry3d> gt, est;  ///< T_world_cam of each trajectory in its own world frame
   std::vector<std::size_t> gt_index;       ///< index in the ground truth of each pair (the KITTI frame number)
+
+  /// The ground-truth index of pair i (i itself when the pairs carry no indices).
+  std::size_t groundTruthFrame(std::size_t i) const { return i < gt_index.size() ? gt_index[i] : i; }
 };
 
 /// Pairs pose i of the ground truth with pose i of the estimate, up to the shorter of the two (an

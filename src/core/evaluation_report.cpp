@@ -128,6 +128,8 @@ std::string statisticsRow(const std::string& name, const ErrorStatistics& s) {
          figure(s.max) + " | " + std::to_string(s.count) + " |\n";
 }
 
+constexpr const char* kStraightLine = "reference: constant-speed straight line closest to the ground truth";
+
 void markdownAte(const TrajectoryEvaluation& e, const AteProtocolOptions& options, std::ostringstream& md) {
   md << "## Absolute trajectory error (camera positions, m)\n\n"
      << "| alignment | RMSE | mean | median | max | poses |\n|---|---:|---:|---:|---:|---:|\n";
@@ -138,7 +140,9 @@ void markdownAte(const TrajectoryEvaluation& e, const AteProtocolOptions& option
   md << statisticsRow("Sim(3) Umeyama, whole trajectory (scale " + figure(e.sim3_ate.alignment.scale) + ")",
                       e.sim3_ate.error_m)
      << statisticsRow("SE(3) Umeyama, whole trajectory", e.se3_ate.error_m)
-     << statisticsRow("reference: constant-speed straight line closest to the ground truth", e.straight_line_m) << "\n";
+     << (e.straight_line_m.count ? statisticsRow(kStraightLine, e.straight_line_m)
+                                 : "| " + std::string(kStraightLine) + " | not available: one frame number | | | | |\n")
+     << "\n";
 }
 
 void markdownRelative(const TrajectoryEvaluation& e, const TrajectoryEvaluationOptions& options,

@@ -19,7 +19,7 @@ struct Compared {
 DepthCheck checkDepths(const std::vector<MapPoint>& points, const cv::Mat& true_depth, double tolerance) {
   CV_Assert(true_depth.type() == CV_32FC1);
   std::vector<Compared> compared;
-  std::vector<double> ratios;
+  std::vector<double> edge_ratios, all_ratios;
   for (const MapPoint& point : points) {
     if (!point.hasDepth()) continue;
     const int x = static_cast<int>(std::lround(point.u)), y = static_cast<int>(std::lround(point.v));
@@ -34,11 +34,12 @@ DepthCheck checkDepths(const std::vector<MapPoint>& points, const cv::Mat& true_
         if (near > 0.0) lowest = std::min(lowest, near), highest = std::max(highest, near);
       }
     compared.push_back({&point, 1.0 / point.inverse_depth, truth, lowest, highest});
-    ratios.push_back(compared.back().estimate / truth);
+    all_ratios.push_back(compared.back().estimate / truth);
+    if (point.isEdge()) edge_ratios.push_back(all_ratios.back());
   }
   DepthCheck check;
   if (compared.empty()) return check;
-  check.scale = median(ratios);
+  check.scale = median(edge_ratios.empty() ? all_ratios : edge_ratios);
   std::vector<double> errors;
   for (const Compared& c : compared) {
     const double scaled = c.estimate / check.scale;

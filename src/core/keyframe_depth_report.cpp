@@ -1,6 +1,7 @@
 #include "semantic_edge_vo/keyframe_depth_report.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
@@ -13,27 +14,41 @@ namespace semantic_edge_vo {
 
 std::string KeyframeDepthReport::update(const std::deque<std::shared_ptr<Keyframe>>& keyframes) {
   if (keyframes.empty() || keyframes.back() == newest_) return "";
-  // A new keyframe: the one it replaces has had all its frames (after a loss it may be gone already).
-  std::string error;
-  if (newest_) error = check(*newest_, true);
+  // A new keyframe: the one before it (still held here) has had all its frames.
+  std::string error = finish();
   newest_ = keyframes.back();
   if (error.empty()) error = check(*newest_, false);
   return error;
 }
 
+std::string KeyframeDepthReport::finish() {
+  if (!newest_) return "";
+  const std::string error = check(*newest_, true);
+  newest_.reset();
+  return error;
+}
+
 std::string KeyframeDepthReport::check(const Keyframe& keyframe, bool retired) {
   const std::string path = kittiFramePath(depth_folder_, static_cast<std::size_t>(keyframe.frame->index));
+  if (!std::filesystem::exists(path)) return path + ": no such depth file";
   const cv::Mat encoded = cv::imread(path, cv::IMREAD_UNCHANGED);
   if (encoded.empty() || encoded.type() != CV_16UC1) return path + ": not a 16-bit depth PNG";
-  rows_.push_back({keyframe.frame->index, retired, checkDepths(keyframe.points, synthetic::decodeDepth(encoded))});
+  if (keyframe.frame->pyramid) {
+    const PinholeCamera& camera = keyframe.frame->pyramid->level(0).camera;
+    if (encoded.cols != camera.width || encoded.rows != camera.height)
+      return path + ": " + std::to_string(encoded.cols) + "x" + std::to_string(encoded.rows) + ", the images are " +
+             std::to_string(camera.width) + "x" + std::to_string(camera.height);
+  }
+  rows_.push_back({keyframe.frame->index, retired, checkDepths(keyframe.points, synthetic::decodeDepth(encoded), tolerance_)});
   return "";
 }
 
 std::string KeyframeDepthReport::table() const {
   std::ostringstream out;
-  out << "# keyframe depths against the true depths: wrong = more than 20 % outside the true range around the\n"
-         "# pixel, after dividing by the map scale (median estimated / true depth)\n"
-         "# frame stage edges edges_wrong support support_wrong scale median_error\n";
+  out << "# keyframe depths against the true depths, after dividing by the map scale (median estimated / true\n"
+         "# depth of the edge points); wrong: below the lowest true depth around the pixel (3x3) / "
+      << 1.0 + tolerance_ << " or above the highest x " << 1.0 + tolerance_
+      << "\n# frame stage edges edges_wrong support support_wrong scale median_error\n";
   for (const Row& row : rows_)
     out << row.frame << ' ' << (row.retired ? "retired" : "new") << ' ' << row.check.edges << ' ' << row.check.edges_wrong
         << ' ' << row.check.support << ' ' << row.check.support_wrong << ' ' << row.check.scale << ' '

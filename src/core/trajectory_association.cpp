@@ -55,10 +55,10 @@ std::string associateByStamps(const Trajectory& gt, const Trajectory& est, doubl
 PosePairs fromGroundTruthFrame(const PosePairs& pairs, std::size_t first_frame) {
   PosePairs kept;
   for (std::size_t i = 0; i < pairs.gt.size(); ++i) {
-    if (pairs.gt_index[i] < first_frame) continue;
+    if (pairs.groundTruthFrame(i) < first_frame) continue;
     kept.gt.push_back(pairs.gt[i]);
     kept.est.push_back(pairs.est[i]);
-    kept.gt_index.push_back(pairs.gt_index[i]);
+    kept.gt_index.push_back(pairs.groundTruthFrame(i));
   }
   return kept;
 }

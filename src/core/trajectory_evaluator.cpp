@@ -22,7 +22,9 @@ std::string evaluateTrajectory(const PosePairs& pairs, const TrajectoryEvaluatio
   TrajectoryEvaluation result;
   result.pairs = pairs.gt.size();
   result.gt_length_m = pathLength(gt);
-  result.straight_line_m = straightLineErrors(gt, pairs.gt_index);
+  std::vector<std::size_t> frames;
+  for (std::size_t i = 0; i < gt.size(); ++i) frames.push_back(pairs.groundTruthFrame(i));
+  result.straight_line_m = straightLineErrors(gt, frames);
   std::string error = absoluteTrajectoryError(gt, est, true, &result.sim3_ate);
   if (error.empty()) error = absoluteTrajectoryError(gt, est, false, &result.se3_ate);
   if (error.empty()) error = frameToFrameErrors(pairs.gt, pairs.est, options.min_gt_translation_m, &result.frame_to_frame);

@@ -50,6 +50,13 @@ std::string parse(int argc, char** argv, Arguments* args) {
   return {};
 }
 
+/// A depth file the keyframe depth check cannot use ends the check, not the run.
+void stopOnError(const std::string& error, std::optional<KeyframeDepthReport>* report) {
+  if (error.empty()) return;
+  std::fprintf(stderr, "\nrun_sequence: keyframe depth check stopped: %s\n", error.c_str());
+  report->reset();
+}
+
 /// Everything the run is configured with: built-in defaults, then the config file, then the flags.
 struct RunOptions {
   FrameBuilderOptions frame;
@@ -171,14 +178,11 @@ int main(int argc, char** argv) {
     for (FramePose& pose : odometry.process(frame)) poses.push_back(pose);
     odometry_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - odometry_start).count();
     processing_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (depth_report) error = depth_report->update(odometry.keyframes());
-    if (!error.empty()) {
-      std::fprintf(stderr, "\nrun_sequence: frame %d: %s\n", i, error.c_str());
-      return 1;
-    }
+    if (depth_report) stopOnError(depth_report->update(odometry.keyframes()), &depth_report);
     progress.update(i + 1);
   }
   for (FramePose& pose : odometry.flush()) poses.push_back(pose);
+  if (depth_report) stopOnError(depth_report->finish(), &depth_report);
   std::sort(poses.begin(), poses.end(), [](const FramePose& a, const FramePose& b) { return a.index < b.index; });
 
   Trajectory trajectory;

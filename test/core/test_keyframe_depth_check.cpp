@@ -1,6 +1,11 @@
+#include <filesystem>
+
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "semantic_edge_vo/keyframe_depth_check.h"
+#include "semantic_edge_vo/keyframe_depth_report.h"
+#include "semantic_edge_vo/synthetic/sequence_formats.h"
 
 namespace semantic_edge_vo {
 namespace {
@@ -59,6 +64,74 @@ TEST(KeyframeDepthCheck, AContourPointMayTakeEitherSide) {
   EXPECT_EQ(check.edges, 5);
   EXPECT_EQ(check.edges_wrong, 1);  // only the point three pixels inside the background
   EXPECT_EQ(checkDepths({}, depth).scale, 0.0);
+}
+
+TEST(KeyframeDepthCheck, TheEdgesSetTheScale) {
+  // Five of eight points are supportive at twice their depth: a median over all points would take
+  // their scale and call the exact edges wrong.
+  const cv::Mat depth = plane();
+  std::vector<MapPoint> points;
+  for (int u : {20, 50, 80}) points.push_back(pointAt(u, 30, 10.0 + 0.1 * u, true));
+  for (int u : {10, 30, 40, 60, 70}) points.push_back(pointAt(u, 40, 2.0 * (10.0 + 0.1 * u), false));
+  const DepthCheck check = checkDepths(points, depth);
+  EXPECT_NEAR(check.scale, 1.0, 1e-6);
+  EXPECT_EQ(check.edges_wrong, 0);
+  EXPECT_EQ(check.support_wrong, 5);
+  // Without edges, the supportive points set it (and then agree with themselves).
+  points.erase(points.begin(), points.begin() + 3);
+  EXPECT_NEAR(checkDepths(points, depth).scale, 2.0, 1e-6);
+  EXPECT_EQ(checkDepths(points, depth).support_wrong, 0);
+}
+
+/// A keyframe of frame `index` whose image is `width` x 60, with points on the plane at map scale 1.
+std::shared_ptr<Keyframe> keyframeOf(int index, int width = 100) {
+  auto frame = std::make_shared<OdometryFrame>();
+  frame->index = index;
+  PinholeCamera camera;
+  camera.fx = camera.fy = 50.0;
+  camera.cx = 0.5 * width;
+  camera.cy = 30.0;
+  camera.width = width;
+  camera.height = 60;
+  frame->pyramid = std::make_shared<ImagePyramid>(cv::Mat(60, width, CV_8UC1, cv::Scalar(0)), camera, 1);
+  auto keyframe = std::make_shared<Keyframe>();
+  keyframe->id = index;
+  keyframe->frame = frame;
+  for (int u = 5; u < 95; u += 10) keyframe->points.push_back(pointAt(u, 30, 10.0 + 0.1 * u, true));
+  return keyframe;
+}
+
+TEST(KeyframeDepthReport, ChecksEachKeyframeWhenNewAndWhenRetired) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "sevo_keyframe_depth_report";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  for (const char* name : {"000003.png", "000007.png"})
+    ASSERT_TRUE(cv::imwrite((folder / name).string(), synthetic::encodeDepth(plane())));
+  ASSERT_TRUE(cv::imwrite((folder / "000008.png").string(), synthetic::encodeDepth(cv::Mat(60, 50, CV_32FC1, cv::Scalar(5.0f)))));
+
+  KeyframeDepthReport report(folder.string());
+  std::deque<std::shared_ptr<Keyframe>> keyframes = {keyframeOf(3)};
+  EXPECT_EQ(report.update(keyframes), "");
+  EXPECT_EQ(report.update(keyframes), "");  // no new keyframe: nothing checked
+  keyframes.push_back(keyframeOf(7));
+  keyframes.back()->points[0].inverse_depth *= 3.0;  // one point three times too near
+  EXPECT_EQ(report.update(keyframes), "");
+  EXPECT_EQ(report.finish(), "");
+  EXPECT_EQ(report.finish(), "");  // nothing left to retire
+  // Rows in order: frame, stage, edges, wrong edges, supportive, wrong supportive, scale (1), ...
+  const std::string table = report.table();
+  std::size_t at = 0;
+  for (const char* row : {"\n3 new 9 0 0 0 1 ", "\n3 retired 9 0 0 0 1 ", "\n7 new 9 1 0 0 1 ", "\n7 retired 9 1 0 0 1 "}) {
+    at = table.find(row, at);
+    ASSERT_NE(at, std::string::npos) << row << " in\n" << table;
+  }
+  EXPECT_NE(report.summary().find("new 2: 11 % of edge"), std::string::npos) << report.summary();
+
+  KeyframeDepthReport missing(folder.string());
+  EXPECT_NE(missing.update({keyframeOf(9)}).find("000009.png: no such depth file"), std::string::npos);
+  KeyframeDepthReport other_size(folder.string());
+  EXPECT_NE(other_size.update({keyframeOf(8)}).find("50x60, the images are 100x60"), std::string::npos);
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace

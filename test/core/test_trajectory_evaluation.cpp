@@ -400,6 +400,11 @@ TEST(TrajectoryEvaluation, ReportsHoldTheFigures) {
   EXPECT_NE(markdown.find("`a\\|b.tum`"), std::string::npos);
   EXPECT_NE(markdown.find("| paper: first 10 poses discarded, Sim(3) per 200 frames |"), std::string::npos);
   EXPECT_NE(markdown.find("## KITTI devkit drift"), std::string::npos);
+  // The straight-line reference: the ground truth is a straight line at constant speed.
+  EXPECT_EQ(e.straight_line_m.count, gt.size());
+  EXPECT_LT(e.straight_line_m.rmse, 1e-9);
+  EXPECT_NE(json.find("\"straight_line_reference\": {"), std::string::npos);
+  EXPECT_NE(markdown.find("| reference: constant-speed straight line closest to the ground truth | "), std::string::npos);
 }
 
 TEST(TrajectoryEvaluation, TopDownPlotDrawsBothTrajectories) {
