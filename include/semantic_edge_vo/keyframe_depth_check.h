@@ -23,9 +23,12 @@ struct DepthCheck {
   double supportWrongFraction() const { return support ? static_cast<double>(support_wrong) / support : 0.0; }
 };
 
+constexpr double kDepthCheckTolerance = 0.2;
+
 /// @param points       a keyframe's points; those without a depth (MapPoint::hasDepth) are skipped
 /// @param true_depth   CV_32FC1 metres at each pixel of the keyframe's image, 0 where unknown (sky)
 /// @param tolerance    relative, see above
-DepthCheck checkDepths(const std::vector<MapPoint>& points, const cv::Mat& true_depth, double tolerance = 0.2);
+DepthCheck checkDepths(const std::vector<MapPoint>& points, const cv::Mat& true_depth,
+                       double tolerance = kDepthCheckTolerance);
 
 }  // namespace semantic_edge_vo

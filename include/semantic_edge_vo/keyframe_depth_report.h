@@ -20,14 +20,14 @@ namespace semantic_edge_vo {
 /// the window is merged, so its "new" row describes the first triangulation only.
 class KeyframeDepthReport {
  public:
-  explicit KeyframeDepthReport(std::string depth_folder, double tolerance = 0.2)
+  explicit KeyframeDepthReport(std::string depth_folder, double tolerance = kDepthCheckTolerance)
       : depth_folder_(std::move(depth_folder)), tolerance_(tolerance) {}
 
   /// Call after each Odometry::process with its keyframes. Empty on success, else what is wrong with
   /// the depth file of a keyframe (the caller may stop reporting; the odometry is not affected).
   std::string update(const std::deque<std::shared_ptr<Keyframe>>& keyframes);
   /// Checks the newest keyframe as retired: call once, after the last frame.
-  std::string finish();
+  void finish();
   /// One line per check: frame, stage, counts, scale, median error.
   std::string table() const;
   /// Medians over the keyframes of each stage, one line.
@@ -39,11 +39,14 @@ class KeyframeDepthReport {
     bool retired;
     DepthCheck check;
   };
-  std::string check(const Keyframe& keyframe, bool retired);
+  /// The keyframe's true depths (CV_32FC1 metres); empty on success, else what is wrong with the file.
+  std::string load(const Keyframe& keyframe, cv::Mat* depth) const;
+  void check(const Keyframe& keyframe, const cv::Mat& depth, bool retired);
 
   std::string depth_folder_;
   double tolerance_;
   std::shared_ptr<const Keyframe> newest_;  ///< checked as new, to be checked again when retired
+  cv::Mat newest_depth_;                    ///< its true depths, read once
   std::vector<Row> rows_;
 };
 

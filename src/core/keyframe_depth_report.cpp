@@ -15,20 +15,21 @@ namespace semantic_edge_vo {
 std::string KeyframeDepthReport::update(const std::deque<std::shared_ptr<Keyframe>>& keyframes) {
   if (keyframes.empty() || keyframes.back() == newest_) return "";
   // A new keyframe: the one before it (still held here) has had all its frames.
-  std::string error = finish();
+  finish();
+  const std::string error = load(*keyframes.back(), &newest_depth_);
+  if (!error.empty()) return error;
   newest_ = keyframes.back();
-  if (error.empty()) error = check(*newest_, false);
-  return error;
+  check(*newest_, newest_depth_, false);
+  return "";
 }
 
-std::string KeyframeDepthReport::finish() {
-  if (!newest_) return "";
-  const std::string error = check(*newest_, true);
+void KeyframeDepthReport::finish() {
+  if (!newest_) return;
+  check(*newest_, newest_depth_, true);
   newest_.reset();
-  return error;
 }
 
-std::string KeyframeDepthReport::check(const Keyframe& keyframe, bool retired) {
+std::string KeyframeDepthReport::load(const Keyframe& keyframe, cv::Mat* depth) const {
   const std::string path = kittiFramePath(depth_folder_, static_cast<std::size_t>(keyframe.frame->index));
   if (!std::filesystem::exists(path)) return path + ": no such depth file";
   const cv::Mat encoded = cv::imread(path, cv::IMREAD_UNCHANGED);
@@ -39,8 +40,12 @@ std::string KeyframeDepthReport::check(const Keyframe& keyframe, bool retired) {
       return path + ": " + std::to_string(encoded.cols) + "x" + std::to_string(encoded.rows) + ", the images are " +
              std::to_string(camera.width) + "x" + std::to_string(camera.height);
   }
-  rows_.push_back({keyframe.frame->index, retired, checkDepths(keyframe.points, synthetic::decodeDepth(encoded), tolerance_)});
+  *depth = synthetic::decodeDepth(encoded);
   return "";
+}
+
+void KeyframeDepthReport::check(const Keyframe& keyframe, const cv::Mat& depth, bool retired) {
+  rows_.push_back({keyframe.frame->index, retired, checkDepths(keyframe.points, depth, tolerance_)});
 }
 
 std::string KeyframeDepthReport::table() const {

@@ -182,7 +182,7 @@ int main(int argc, char** argv) {
     progress.update(i + 1);
   }
   for (FramePose& pose : odometry.flush()) poses.push_back(pose);
-  if (depth_report) stopOnError(depth_report->finish(), &depth_report);
+  if (depth_report) depth_report->finish();
   std::sort(poses.begin(), poses.end(), [](const FramePose& a, const FramePose& b) { return a.index < b.index; });
 
   Trajectory trajectory;
