@@ -6,6 +6,7 @@
 #include <opencv2/core/mat.hpp>
 
 #include "semantic_edge_vo/camera.h"
+#include "semantic_edge_vo/corner_tracks.h"
 
 namespace semantic_edge_vo {
 
@@ -41,18 +42,15 @@ class TwoViewInitializer {
   const Eigen::Isometry3d& T_last_first() const { return T_last_first_; }
   /// Inverse depth of each pixel given to reset() in the first frame, 0 where unknown.
   const std::vector<double>& inverseDepths() const { return inverse_depths_; }
-  int framesAdded() const { return frames_; }
+  int framesAdded() const { return tracks_.framesTracked(); }
 
  private:
   bool solve();
 
   InitializerOptions options_;
   PinholeCamera camera_;
-  std::vector<cv::Mat> previous_;  ///< KLT pyramid of the previous frame
-  std::vector<cv::Point2f> first_, current_;
-  std::vector<int> alive_;  ///< index into the reset() pixels of each tracked point
+  CornerTracks tracks_;  ///< the reset() pixels, followed
   std::size_t pixel_count_ = 0;
-  int frames_ = 0;
   Eigen::Isometry3d T_last_first_ = Eigen::Isometry3d::Identity();
   std::vector<double> inverse_depths_;
 };

@@ -25,6 +25,13 @@ struct WindowOptimizerOptions {
   /// Between consecutive keyframes (the loader sets the tracker's): the window would otherwise
   /// re-learn the lateral drift the tracker's prior holds back, from depths that agree with it.
   ForwardMotionOptions forward_motion;
+  /// Sigmas of the priors on a keyframe's rotation and direction of travel from the keyframe before
+  /// it where two-view geometry measured them (Keyframe::measured_motion), deg; 0: not used. The
+  /// direct residuals leave the direction of travel weakly observed under forward motion (a shifted
+  /// focus of expansion with depths to match explains them nearly as well): corners tracked between
+  /// the keyframes measure it independently of the depths.
+  double measured_rotation_sigma_deg = 0.05;
+  double measured_direction_sigma_deg = 0.5;
 
   std::string validate() const;
 };
@@ -39,7 +46,8 @@ struct WindowOptimizerResult {
 /// photometric residuals (gradient magnitude, Huber) of every point in every other keyframe of the
 /// window, point-to-tangent residuals of edge points against their nearest same-class edge there
 /// (smaller weight than in tracking), and a prior on each inverse depth at its filtered estimate and
-/// sigma. The oldest keyframe of the window is held fixed (gauge).
+/// sigma, priors on the motion between consecutive keyframes (forward travel; measured rotation and
+/// direction). The oldest keyframe of the window is held fixed (gauge).
 class WindowOptimizer {
  public:
   explicit WindowOptimizer(const WindowOptimizerOptions& options) : options_(options) {}

@@ -62,6 +62,17 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("window_optimizer/edge_weight", &window.edge_weight, "");
   loader->load("window_optimizer/edge_radius", &window.edge_radius, "px");
   loader->load("window_optimizer/depth_prior_scale", &window.depth_prior_scale, "filtered sigmas");
+  loader->load("window_optimizer/measured_rotation_sigma", &window.measured_rotation_sigma_deg, "deg (0: off)");
+  loader->load("window_optimizer/measured_direction_sigma", &window.measured_direction_sigma_deg, "deg (0: off)");
+  KeyframeMotionOptions& motion = options->keyframe_motion;
+  loader->load("keyframe_motion/corners", &motion.corners, "corners (0: off)");
+  loader->load("keyframe_motion/min_distance", &motion.min_distance, "px");
+  loader->load("keyframe_motion/window", &motion.window, "px");
+  loader->load("keyframe_motion/ransac_threshold", &motion.ransac_threshold, "px");
+  loader->load("keyframe_motion/min_inliers", &motion.min_inliers, "corners");
+  loader->load("keyframe_motion/min_flow", &motion.min_flow, "px");
+  loader->load("keyframe_motion/reanchor_rotation", &motion.reanchor_rotation_deg, "deg");
+  loader->load("keyframe_motion/reanchor_direction", &motion.reanchor_direction_deg, "deg");
   return options->validate();
 }
 

@@ -3,7 +3,8 @@
 #include <sstream>
 
 #include "semantic_edge_vo/factors/edge_factor.h"
-#include "semantic_edge_vo/factors/forward_motion_factor.h"
+#include "semantic_edge_vo/factors/relative_rotation_factor.h"
+#include "semantic_edge_vo/factors/travel_direction_factor.h"
 #include "semantic_edge_vo/factors/inverse_depth_prior.h"
 #include "semantic_edge_vo/factors/photometric_factor.h"
 
@@ -34,6 +35,8 @@ std::string WindowOptimizerOptions::validate() const {
   else if (!(photometric_sigma > 0 && photometric_huber > 0 && edge_sigma > 0 && edge_huber > 0 && edge_weight >= 0 && edge_radius > 0 &&
              depth_prior_scale > 0))
     error << "sigmas, Huber thresholds, the edge radius and depth_prior_scale must be > 0, edge_weight >= 0";
+  else if (!(measured_rotation_sigma_deg >= 0 && measured_direction_sigma_deg >= 0))
+    error << "measured_rotation_sigma and measured_direction_sigma must be >= 0 deg (0: off)";
   return error.str();
 }
 
@@ -59,11 +62,25 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
   ceres::Problem problem;
   for (factors::PoseParameters& pose : poses) problem.AddParameterBlock(pose.data(), 7, new factors::PoseManifold());
   problem.SetParameterBlockConstant(poses[0].data());
-  if (options_.forward_motion.sigma_deg > 0.0)
-    for (std::size_t k = 1; k < count; ++k)
-      problem.AddResidualBlock(new factors::ForwardMotionFactor(options_.forward_motion, window[first + k - 1]->T_world_cam,
-                                                                window[first + k]->T_world_cam),
-                               nullptr, poses[k - 1].data(), poses[k].data());
+  for (std::size_t k = 1; k < count; ++k) {
+    const Keyframe& earlier = *window[first + k - 1];
+    const Keyframe& later = *window[first + k];
+    if (options_.forward_motion.sigma_deg > 0.0)
+      problem.AddResidualBlock(factors::forwardMotionFactor(options_.forward_motion, earlier.T_world_cam, later.T_world_cam), nullptr,
+                               poses[k - 1].data(), poses[k].data());
+    const MeasuredMotion& measured = later.measured_motion;
+    if (measured.from_id != earlier.id) continue;
+    // Robust: a measurement far off (corners on traffic, say) pulls with a bounded force.
+    if (options_.measured_rotation_sigma_deg > 0.0)
+      problem.AddResidualBlock(new factors::RelativeRotationFactor(measured.R_from_this, options_.measured_rotation_sigma_deg * M_PI / 180.0),
+                               new ceres::HuberLoss(3.0), poses[k - 1].data(), poses[k].data());
+    if (options_.measured_direction_sigma_deg > 0.0) {
+      const double distance = (later.T_world_cam.translation() - earlier.T_world_cam.translation()).norm();
+      problem.AddResidualBlock(
+          new factors::TravelDirectionFactor(measured.direction, options_.measured_direction_sigma_deg * M_PI / 180.0, distance),
+          new ceres::HuberLoss(3.0), poses[k - 1].data(), poses[k].data());
+    }
+  }
 
   // Inverse depths live in a vector parallel to (host, point index) so that they are written back.
   struct PointRef {

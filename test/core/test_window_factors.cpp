@@ -4,7 +4,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "semantic_edge_vo/factors/edge_factor.h"
-#include "semantic_edge_vo/factors/forward_motion_factor.h"
+#include "semantic_edge_vo/factors/relative_rotation_factor.h"
+#include "semantic_edge_vo/factors/travel_direction_factor.h"
 #include "semantic_edge_vo/factors/photometric_factor.h"
 #include "semantic_edge_vo/image_pyramid.h"
 
@@ -123,22 +124,23 @@ TEST(WindowFactors, EdgeJacobiansMatchCentralDifferences) {
   expectNear(analytic(factor, scene.host, scene.target, scene.rho), expected, 1e-4);
 }
 
-TEST(WindowFactors, ForwardMotionJacobiansMatchCentralDifferences) {
-  // The scene's target drifts 0.1 m to the side over 0.8 m: about 7 degrees off the axis.
-  const Scene scene;
-  ForwardMotionOptions options;
-  options.sigma_deg = 5.0;
-  const factors::ForwardMotionFactor factor(options, factors::fromParameters(scene.host.data()), factors::fromParameters(scene.target.data()));
-  const auto evaluate = [&](const PoseParameters& earlier, const PoseParameters& later, double** jacobians) {
-    const double* parameters[] = {earlier.data(), later.data()};
-    Eigen::Vector2d residual;
-    EXPECT_TRUE(factor.Evaluate(parameters, residual.data(), jacobians));
-    return residual;
-  };
-  Eigen::Matrix<double, 2, 7, Eigen::RowMajor> j_earlier, j_later;
+/// Residual of a factor over two poses, with its Jacobians when asked for.
+template <int N>
+Eigen::Matrix<double, N, 1> evaluatePair(const ceres::CostFunction& factor, const PoseParameters& earlier, const PoseParameters& later,
+                                         double** jacobians) {
+  const double* parameters[] = {earlier.data(), later.data()};
+  Eigen::Matrix<double, N, 1> residual;
+  EXPECT_TRUE(factor.Evaluate(parameters, residual.data(), jacobians));
+  return residual;
+}
+
+/// Checks a two-pose factor's analytic Jacobians against central differences through PoseManifold;
+/// returns its residual at the scene.
+template <int N>
+Eigen::Matrix<double, N, 1> expectPairJacobians(const ceres::CostFunction& factor, const Scene& scene) {
+  Eigen::Matrix<double, N, 7, Eigen::RowMajor> j_earlier, j_later;
   double* jacobians[] = {j_earlier.data(), j_later.data()};
-  const Eigen::Vector2d residual = evaluate(scene.host, scene.target, jacobians);
-  EXPECT_GT(residual.norm(), 1.0);  // about 7 degrees against a 5 degree sigma
+  const Eigen::Matrix<double, N, 1> residual = evaluatePair<N>(factor, scene.host, scene.target, jacobians);
   EXPECT_EQ(j_earlier.col(6).norm(), 0.0);
   EXPECT_EQ(j_later.col(6).norm(), 0.0);
   const factors::PoseManifold manifold;
@@ -149,13 +151,46 @@ TEST(WindowFactors, ForwardMotionJacobiansMatchCentralDifferences) {
     PoseParameters plus, minus;
     manifold.Plus(scene.host.data(), delta.data(), plus.data());
     manifold.Plus(scene.host.data(), (-delta).eval().data(), minus.data());
-    const Eigen::Vector2d d_earlier = (evaluate(plus, scene.target, nullptr) - evaluate(minus, scene.target, nullptr)) / (2 * step);
+    const Eigen::Matrix<double, N, 1> d_earlier =
+        (evaluatePair<N>(factor, plus, scene.target, nullptr) - evaluatePair<N>(factor, minus, scene.target, nullptr)) / (2 * step);
     manifold.Plus(scene.target.data(), delta.data(), plus.data());
     manifold.Plus(scene.target.data(), (-delta).eval().data(), minus.data());
-    const Eigen::Vector2d d_later = (evaluate(scene.host, plus, nullptr) - evaluate(scene.host, minus, nullptr)) / (2 * step);
+    const Eigen::Matrix<double, N, 1> d_later =
+        (evaluatePair<N>(factor, scene.host, plus, nullptr) - evaluatePair<N>(factor, scene.host, minus, nullptr)) / (2 * step);
     EXPECT_LT((j_earlier.col(i) - d_earlier).norm(), 1e-4 * (1.0 + d_earlier.norm())) << "earlier " << i;
     EXPECT_LT((j_later.col(i) - d_later).norm(), 1e-4 * (1.0 + d_later.norm())) << "later " << i;
   }
+  return residual;
+}
+
+TEST(WindowFactors, ForwardMotionJacobiansMatchCentralDifferences) {
+  // The scene's target drifts 0.1 m to the side over 0.8 m: about 7 degrees off the axis.
+  const Scene scene;
+  ForwardMotionOptions options;
+  options.sigma_deg = 5.0;
+  const std::unique_ptr<factors::TravelDirectionFactor> factor(
+      factors::forwardMotionFactor(options, factors::fromParameters(scene.host.data()), factors::fromParameters(scene.target.data())));
+  EXPECT_GT(expectPairJacobians<2>(*factor, scene).norm(), 1.0);  // about 7 degrees against a 5 degree sigma
+}
+
+TEST(WindowFactors, MeasuredMotionIsFreeAtTheTruthAndHasExactJacobians) {
+  const Scene scene;
+  const Eigen::Isometry3d T_earlier_later = factors::fromParameters(scene.host.data()).inverse() * factors::fromParameters(scene.target.data());
+  const double sigma = 0.5 * M_PI / 180.0;
+  const factors::TravelDirectionFactor direction(T_earlier_later.translation(), sigma, T_earlier_later.translation().norm());
+  const factors::RelativeRotationFactor rotation(T_earlier_later.linear(), sigma);
+  EXPECT_LT(evaluatePair<2>(direction, scene.host, scene.target, nullptr).norm(), 1e-9);
+  EXPECT_LT(evaluatePair<3>(rotation, scene.host, scene.target, nullptr).norm(), 1e-9);
+
+  // Measured 1 degree of yaw and about 3 degrees of direction off: residuals of 2 and about 6 sigmas.
+  const Eigen::Matrix3d yaw = Eigen::AngleAxisd(M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(3.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const factors::RelativeRotationFactor rotation_off(T_earlier_later.linear() * yaw, sigma);
+  const factors::TravelDirectionFactor direction_off(turn * T_earlier_later.translation(), sigma, T_earlier_later.translation().norm());
+  EXPECT_NEAR(expectPairJacobians<3>(rotation_off, scene).norm(), 2.0, 1e-6);
+  const Eigen::Vector3d travel = T_earlier_later.translation().normalized();
+  const double off = std::acos(travel.dot(turn * travel));  // under 3 degrees: the travel is not across the axis
+  EXPECT_NEAR(expectPairJacobians<2>(direction_off, scene).norm(), std::sin(off) / sigma, 1e-6);
 }
 
 TEST(WindowFactors, PoseManifoldPlusAndMinusAreInverse) {
