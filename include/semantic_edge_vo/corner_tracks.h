@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -11,10 +12,12 @@ namespace semantic_edge_vo {
 class CornerTracks {
  public:
   /// @param window KLT window side, px; @param levels KLT pyramid levels above full resolution
-  explicit CornerTracks(int window = 21, int levels = 3) : window_(window), levels_(levels) {}
+  explicit CornerTracks(int window = 21, int levels = 3) : window_(std::max(window, 3)), levels_(std::max(levels, 0)) {}
 
   /// Starts tracks at `pixels` of `gray` (CV_8UC1).
   void reset(const cv::Mat& gray, const std::vector<cv::Point2f>& pixels);
+  /// Starts tracks at `pixels` of the frame last given (to reset() or track()), whose pyramid is kept.
+  void restart(const std::vector<cv::Point2f>& pixels);
   /// Follows the tracks into the next frame (CV_8UC1). Returns the number kept.
   std::size_t track(const cv::Mat& gray);
 

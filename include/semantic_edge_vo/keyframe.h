@@ -15,7 +15,6 @@ struct MeasuredMotion {
   int from_id = -1;  ///< the keyframe it was measured from; -1: not measured
   Eigen::Matrix3d R_from_this = Eigen::Matrix3d::Identity();  ///< this keyframe's orientation in that one's optical frame
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();      ///< unit direction to this keyframe's centre, same frame
-  int inliers = 0;   ///< corners that agree with it
 };
 
 struct Keyframe {

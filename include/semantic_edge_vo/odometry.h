@@ -4,34 +4,15 @@
 #include <string>
 #include <vector>
 
-#include "semantic_edge_vo/corner_tracks.h"
 #include "semantic_edge_vo/deferred_window_optimization.h"
 #include "semantic_edge_vo/epipolar_depth.h"
 #include "semantic_edge_vo/keyframe.h"
+#include "semantic_edge_vo/keyframe_motion.h"
 #include "semantic_edge_vo/tracker.h"
 #include "semantic_edge_vo/two_view_initializer.h"
 #include "semantic_edge_vo/window_optimizer.h"
 
 namespace semantic_edge_vo {
-
-/// Corners tracked from each keyframe to the next, whose two-view geometry measures the rotation and
-/// direction of travel between them (priors of the windowed optimisation).
-struct KeyframeMotionOptions {
-  int corners = 400;             ///< Shi-Tomasi corners started at each keyframe; 0: not measured
-  double min_distance = 10.0;    ///< between corners, px
-  int window = 15;               ///< KLT window side, px
-  double ransac_threshold = 0.5; ///< essential matrix RANSAC, px
-  int min_inliers = 50;          ///< corners that must agree with the motion
-  double min_flow = 5.0;         ///< median corner displacement below which the direction is not measured, px
-  /// A new keyframe whose tracked motion from the active one is this far from the measured motion
-  /// (rotation, deg; direction of travel, deg) starts the windowed optimisation from the measured
-  /// motion (its distance kept): the direct residuals then agree with depths that agree with the
-  /// error, and the window's priors alone do not pull it back.
-  double reanchor_rotation_deg = 0.3;
-  double reanchor_direction_deg = 2.0;
-
-  std::string validate() const;
-};
 
 enum class OdometryState {
   kInitializing,  ///< no map yet (first frames, or after a loss)
@@ -114,12 +95,8 @@ class Odometry {
   /// @return the correction of the active keyframe's pose (identity when it did not move)
   Eigen::Isometry3d mergeWindow(FramePose* pose);
   void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);
-  /// Follows the active keyframe's corners into a tracked frame.
-  void trackCorners(const OdometryFrame& frame);
-  /// The keyframe's motion from the active keyframe, from the corners followed into its frame.
-  MeasuredMotion measureMotion(const Keyframe& keyframe) const;
-  /// Moves a new keyframe to its measured motion from the active one where its tracked motion is far off it.
-  void reanchor(Keyframe* keyframe) const;
+  /// Follows the active keyframe's corners into a tracked frame (KeyframeMotion).
+  void followCorners(const OdometryFrame& frame);
   std::vector<Eigen::Isometry3d> guesses(const Keyframe& keyframe) const;
   void remember(const FramePose& pose);
 
@@ -130,8 +107,7 @@ class Odometry {
   DeferredWindowOptimization deferred_window_;
   int merge_window_at_ = 0;  ///< frame index at which the deferred optimisation is merged
   TwoViewInitializer initializer_;
-  CornerTracks corners_;      ///< from the active keyframe (KeyframeMotionOptions)
-  int corners_frame_ = -1;    ///< frame index the corners were last followed into
+  KeyframeMotion keyframe_motion_;  ///< corners from the active keyframe
   OdometryState state_ = OdometryState::kInitializing;
   bool recovering_ = false;
   /// A frame since the initialisation started, with the initialiser's time on it (reported as its tracking time).

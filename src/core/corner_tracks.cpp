@@ -13,6 +13,10 @@ std::vector<cv::Mat> CornerTracks::pyramid(const cv::Mat& gray) const {
 
 void CornerTracks::reset(const cv::Mat& gray, const std::vector<cv::Point2f>& pixels) {
   previous_ = pyramid(gray);
+  restart(pixels);
+}
+
+void CornerTracks::restart(const std::vector<cv::Point2f>& pixels) {
   first_ = pixels;
   current_ = pixels;
   ids_.resize(pixels.size());
@@ -22,11 +26,14 @@ void CornerTracks::reset(const cv::Mat& gray, const std::vector<cv::Point2f>& pi
 
 std::size_t CornerTracks::track(const cv::Mat& gray) {
   ++frames_;
-  if (current_.empty()) return 0;  // OpenCV's KLT throws on an empty point set
+  std::vector<cv::Mat> levels = pyramid(gray);
+  if (current_.empty()) {  // OpenCV's KLT throws on an empty point set
+    previous_ = std::move(levels);
+    return 0;
+  }
   std::vector<cv::Point2f> next, back;
   std::vector<std::uint8_t> status, back_status;
   std::vector<float> error;
-  std::vector<cv::Mat> levels = pyramid(gray);
   const cv::Size window(window_, window_);
   cv::calcOpticalFlowPyrLK(previous_, levels, current_, next, status, error, window, levels_);
   cv::calcOpticalFlowPyrLK(levels, previous_, next, back, back_status, error, window, levels_);
@@ -47,6 +54,7 @@ std::size_t CornerTracks::track(const cv::Mat& gray) {
 }
 
 std::vector<cv::Point2f> detectCorners(const cv::Mat& gray, int count, double min_distance) {
+  if (gray.cols < 2 || gray.rows < 2 || count <= 0) return {};
   cv::Mat half;
   cv::resize(gray, half, cv::Size(gray.cols / 2, gray.rows / 2), 0, 0, cv::INTER_AREA);
   std::vector<cv::Point2f> corners;

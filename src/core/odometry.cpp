@@ -1,7 +1,6 @@
 #include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/odometry.h"
 #include "semantic_edge_vo/parallel_slices.h"
-#include "semantic_edge_vo/two_view_geometry.h"
 
 #include <algorithm>
 #include <chrono>
@@ -68,14 +67,6 @@ const char* toString(OdometryState state) {
   return "unknown";
 }
 
-std::string KeyframeMotionOptions::validate() const {
-  if (corners < 0 || window < 3 || min_inliers < 5) return "keyframe_motion: need corners >= 0, window >= 3 px, min_inliers >= 5";
-  if (!(min_distance >= 0 && ransac_threshold > 0 && min_flow >= 0))
-    return "keyframe_motion: min_distance and min_flow must be >= 0 px, ransac_threshold > 0 px";
-  if (!(reanchor_rotation_deg > 0 && reanchor_direction_deg > 0)) return "keyframe_motion: reanchor_rotation and reanchor_direction must be > 0 deg";
-  return "";
-}
-
 std::string OdometryOptions::validate() const {
   std::string error = tracker.validate();
   if (error.empty()) error = initializer.validate();
@@ -97,7 +88,7 @@ Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera)
       window_optimizer_(options.window_optimizer),
       deferred_window_(window_optimizer_),
       initializer_(options.initializer, camera),
-      corners_(options.keyframe_motion.window) {}
+      keyframe_motion_(options.keyframe_motion, camera) {}
 
 std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFrame>& frame) {
   if (state_ != OdometryState::kTracking) return initialize(frame);
@@ -223,7 +214,7 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
     const auto mapping_start = std::chrono::steady_clock::now();
     if (result.ok) {
       refineDepths(frame_j, result.T_cam_kf);
-      trackCorners(frame_j);
+      followCorners(frame_j);
     }
     pose.mapping_ms = elapsedMs(mapping_start);
     poses.push_back(pose);
@@ -272,7 +263,7 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
   pose.state = OdometryState::kTracking;
   const auto mapping_start = std::chrono::steady_clock::now();
   refineDepths(*frame, pose.tracking.T_cam_kf);
-  trackCorners(*frame);
+  followCorners(*frame);
   ++frames_since_keyframe_;
   const bool few_in_view = pose.tracking.points_in_view < options_.keyframe_min_in_view * pose.tracking.points;
   if (pose.tracking.mean_flow > options_.keyframe_flow || few_in_view || frames_since_keyframe_ >= options_.keyframe_max_interval) {
@@ -300,8 +291,8 @@ Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFra
   keyframe->id = next_keyframe_id_++;
   keyframe->T_world_cam = T_world_cam;
   keyframe->frame = frame;
-  keyframe->measured_motion = measureMotion(*keyframe);
-  reanchor(keyframe.get());
+  keyframe->measured_motion = keyframe_motion_.measure(frame->index);
+  reanchor(keyframe->measured_motion, options_.keyframe_motion, active_->T_world_cam, &keyframe->T_world_cam);
   keyframes_.push_back(keyframe);
   while (static_cast<int>(keyframes_.size()) > options_.window_size) keyframes_.pop_front();
   // The window settles the new pose against the older keyframes' points before the new points are
@@ -374,50 +365,11 @@ Eigen::Isometry3d Odometry::mergeWindow(FramePose* pose) {
 void Odometry::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {
   active_ = std::move(keyframe);
   tracker_.setKeyframe(active_);
-  const KeyframeMotionOptions& motion = options_.keyframe_motion;
-  if (motion.corners == 0) return;
-  const cv::Mat gray = gray8(*active_->frame);
-  corners_.reset(gray, detectCorners(gray, motion.corners, motion.min_distance));
-  corners_frame_ = active_->frame->index;
+  if (keyframe_motion_.enabled()) keyframe_motion_.start(active_->id, active_->frame->index, gray8(*active_->frame));
 }
 
-void Odometry::trackCorners(const OdometryFrame& frame) {
-  if (options_.keyframe_motion.corners == 0) return;
-  corners_.track(gray8(frame));
-  corners_frame_ = frame.index;
-}
-
-void Odometry::reanchor(Keyframe* keyframe) const {
-  const MeasuredMotion& measured = keyframe->measured_motion;
-  if (measured.from_id != active_->id) return;
-  Eigen::Isometry3d T_active_new = active_->T_world_cam.inverse() * keyframe->T_world_cam;
-  const double distance = T_active_new.translation().norm();
-  if (!(distance > 0.0)) return;
-  const double rotation_off = Eigen::AngleAxisd(measured.R_from_this.transpose() * T_active_new.linear()).angle();
-  const double direction_off = std::acos(std::clamp(T_active_new.translation().dot(measured.direction) / distance, -1.0, 1.0));
-  const KeyframeMotionOptions& options = options_.keyframe_motion;
-  if (rotation_off <= options.reanchor_rotation_deg * M_PI / 180.0 && direction_off <= options.reanchor_direction_deg * M_PI / 180.0)
-    return;
-  T_active_new.linear() = measured.R_from_this;
-  T_active_new.translation() = distance * measured.direction;
-  keyframe->T_world_cam = orthonormalized(active_->T_world_cam * T_active_new);
-}
-
-MeasuredMotion Odometry::measureMotion(const Keyframe& keyframe) const {
-  const KeyframeMotionOptions& options = options_.keyframe_motion;
-  MeasuredMotion measured;
-  if (options.corners == 0 || corners_frame_ != keyframe.frame->index) return measured;
-  std::vector<double> flow;
-  for (std::size_t i = 0; i < corners_.current().size(); ++i) flow.push_back(cv::norm(corners_.current()[i] - corners_.first()[i]));
-  if (flow.empty() || median(flow) < options.min_flow) return measured;  // too little parallax for a direction
-  TwoViewMotion motion;
-  if (!estimateTwoViewMotion(corners_.first(), corners_.current(), camera_, options.ransac_threshold, options.min_inliers, &motion))
-    return measured;
-  measured.from_id = active_->id;
-  measured.R_from_this = motion.R_second_first.transpose();
-  measured.direction = -(measured.R_from_this * motion.t_second_first).normalized();  // the centre, -R^T t
-  measured.inliers = motion.inlier_count;
-  return measured;
+void Odometry::followCorners(const OdometryFrame& frame) {
+  if (keyframe_motion_.enabled()) keyframe_motion_.follow(frame.index, gray8(frame));
 }
 
 void Odometry::remember(const FramePose& pose) {

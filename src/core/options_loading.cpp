@@ -70,7 +70,7 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("keyframe_motion/window", &motion.window, "px");
   loader->load("keyframe_motion/ransac_threshold", &motion.ransac_threshold, "px");
   loader->load("keyframe_motion/min_inliers", &motion.min_inliers, "corners");
-  loader->load("keyframe_motion/min_flow", &motion.min_flow, "px");
+  loader->load("keyframe_motion/min_parallax", &motion.min_parallax, "px");
   loader->load("keyframe_motion/reanchor_rotation", &motion.reanchor_rotation_deg, "deg");
   loader->load("keyframe_motion/reanchor_direction", &motion.reanchor_direction_deg, "deg");
   return options->validate();

@@ -71,14 +71,15 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
     const MeasuredMotion& measured = later.measured_motion;
     if (measured.from_id != earlier.id) continue;
     // Robust: a measurement far off (corners on traffic, say) pulls with a bounded force.
+    constexpr double kMeasuredMotionHuber = 3.0;  // sigmas
     if (options_.measured_rotation_sigma_deg > 0.0)
       problem.AddResidualBlock(new factors::RelativeRotationFactor(measured.R_from_this, options_.measured_rotation_sigma_deg * M_PI / 180.0),
-                               new ceres::HuberLoss(3.0), poses[k - 1].data(), poses[k].data());
+                               new ceres::HuberLoss(kMeasuredMotionHuber), poses[k - 1].data(), poses[k].data());
     if (options_.measured_direction_sigma_deg > 0.0) {
       const double distance = (later.T_world_cam.translation() - earlier.T_world_cam.translation()).norm();
       problem.AddResidualBlock(
           new factors::TravelDirectionFactor(measured.direction, options_.measured_direction_sigma_deg * M_PI / 180.0, distance),
-          new ceres::HuberLoss(3.0), poses[k - 1].data(), poses[k].data());
+          new ceres::HuberLoss(kMeasuredMotionHuber), poses[k - 1].data(), poses[k].data());
     }
   }
 

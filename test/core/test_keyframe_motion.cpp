@@ -1,17 +1,22 @@
 // Corner tracks and the two-view motion they measure between keyframes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
 #include "semantic_edge_vo/corner_tracks.h"
+#include "semantic_edge_vo/keyframe_motion.h"
+#include "semantic_edge_vo/synthetic/synthetic_sequence.h"
 #include "semantic_edge_vo/two_view_geometry.h"
 
 namespace semantic_edge_vo {
 namespace {
 
 double degrees(double radians) { return radians * 180.0 / M_PI; }
+double radiansOf(double degrees) { return degrees * M_PI / 180.0; }
 
 TEST(TwoViewMotion, RecoversRotationAndDirectionDespiteOutliers) {
   const PinholeCamera camera = kittiCamera();
@@ -77,6 +82,78 @@ TEST(CornerTracks, FollowsAShiftedImageAndStartsAtCorners) {
   }
   tracks.reset(texture, {});
   EXPECT_EQ(tracks.track(moved), 0u);  // nothing to follow, and no throw
+}
+
+double directionOffDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return degrees(std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)));
+}
+
+TEST(KeyframeMotion, MeasuresTheTrueMotionBetweenSyntheticKeyframes) {
+  synthetic::SyntheticSequence sequence(synthetic::SyntheticSequenceOptions::forScene(synthetic::SceneType::kCity, 3));
+  KeyframeMotion motion(KeyframeMotionOptions{}, sequence.camera());
+  const synthetic::SyntheticFrame keyframe = sequence.frame(10);
+  motion.start(7, 10, keyframe.gray);
+  EXPECT_EQ(motion.measure(10).from_id, -1);  // nothing followed yet
+  synthetic::SyntheticFrame last;
+  for (int i = 11; i <= 16; ++i) {
+    last = sequence.frame(i);
+    motion.follow(i, last.gray);
+  }
+  EXPECT_EQ(motion.measure(15).from_id, -1);  // not the frame the corners are in
+  const MeasuredMotion measured = motion.measure(16);
+  ASSERT_EQ(measured.from_id, 7);
+  const Eigen::Isometry3d T_true = keyframe.T_world_cam.inverse() * last.T_world_cam;
+  ASSERT_GT(T_true.translation().norm(), 3.0);  // the test drives: about 1.3 m per frame
+  EXPECT_LT(degrees(Eigen::AngleAxisd(measured.R_from_this.transpose() * T_true.linear()).angle()), 0.1);
+  EXPECT_LT(directionOffDeg(measured.direction, T_true.translation()), 1.0);
+  EXPECT_NEAR(measured.direction.norm(), 1.0, 1e-9);
+
+  // The next keyframe starts on the frame the corners were followed into (its pyramid is reused).
+  motion.start(8, 16, last.gray);
+  synthetic::SyntheticFrame next;
+  for (int i = 17; i <= 20; ++i) {
+    next = sequence.frame(i);
+    motion.follow(i, next.gray);
+  }
+  const MeasuredMotion from_next = motion.measure(20);
+  ASSERT_EQ(from_next.from_id, 8);
+  EXPECT_LT(directionOffDeg(from_next.direction, (last.T_world_cam.inverse() * next.T_world_cam).translation()), 1.0);
+}
+
+TEST(KeyframeMotion, ReanchorsOnlyAKeyframeFarOffItsMeasuredMotion) {
+  Eigen::Isometry3d T_world_earlier = Eigen::Isometry3d::Identity();
+  T_world_earlier.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d(0.1, 1.0, 0.0).normalized()).toRotationMatrix();
+  T_world_earlier.translation() = Eigen::Vector3d(3.0, -0.2, 10.0);
+  MeasuredMotion measured;
+  measured.from_id = 1;
+  measured.R_from_this = Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  measured.direction = Eigen::Vector3d(0.02, 0.0, 1.0).normalized();
+  const auto newPose = [&](double direction_off_deg, double rotation_off_deg) {
+    Eigen::Isometry3d T_earlier_new = Eigen::Isometry3d::Identity();
+    T_earlier_new.linear() = measured.R_from_this * Eigen::AngleAxisd(radiansOf(rotation_off_deg), Eigen::Vector3d::UnitY()).toRotationMatrix();
+    T_earlier_new.translation() = 2.5 * (Eigen::AngleAxisd(radiansOf(direction_off_deg), Eigen::Vector3d::UnitY()) * measured.direction);
+    return T_world_earlier * T_earlier_new;
+  };
+  const KeyframeMotionOptions options;  // 0.3 deg, 2 deg
+
+  Eigen::Isometry3d near = newPose(1.5, 0.2);
+  const Eigen::Isometry3d near_before = near;
+  EXPECT_FALSE(reanchor(measured, options, T_world_earlier, &near));
+  EXPECT_TRUE(near.isApprox(near_before));
+
+  for (const auto& [direction_off, rotation_off] : {std::pair<double, double>{5.0, 0.0}, {0.0, 0.5}}) {
+    Eigen::Isometry3d far = newPose(direction_off, rotation_off);
+    EXPECT_TRUE(reanchor(measured, options, T_world_earlier, &far));
+    const Eigen::Isometry3d T_earlier_new = T_world_earlier.inverse() * far;
+    EXPECT_NEAR(T_earlier_new.translation().norm(), 2.5, 1e-9);  // the distance is kept
+    EXPECT_LT(directionOffDeg(T_earlier_new.translation(), measured.direction), 1e-6);
+    EXPECT_TRUE(T_earlier_new.linear().isApprox(measured.R_from_this, 1e-9));
+  }
+
+  MeasuredMotion unmeasured = measured;
+  unmeasured.from_id = -1;
+  Eigen::Isometry3d far = newPose(5.0, 0.0);
+  EXPECT_FALSE(reanchor(unmeasured, options, T_world_earlier, &far));
 }
 
 }  // namespace

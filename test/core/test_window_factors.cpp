@@ -76,18 +76,20 @@ PinholeCamera testCamera() {
   return camera;
 }
 
-/// Two keyframes 0.8 m apart with a small turn, and a host point 12 m ahead.
+/// Two keyframes 0.8 m apart with a small turn, and a host point 12 m ahead; `host_turn` (rad)
+/// turns both cameras in the world (a world-frame vs camera-frame twist mix-up shows then).
 struct Scene {
   PoseParameters host, target;
   Eigen::Vector3d ray;
   double rho = 1.0 / 12.0;
 
-  Scene() {
+  explicit Scene(double host_turn = 0.0) {
     Eigen::Isometry3d T_host = Eigen::Isometry3d::Identity();
+    T_host.linear() = Eigen::AngleAxisd(host_turn, Eigen::Vector3d(0.3, 1.0, -0.2).normalized()).toRotationMatrix();
     T_host.translation() = Eigen::Vector3d(0.3, -0.1, 2.0);
     Eigen::Isometry3d T_target = T_host;
-    T_target.linear() = Eigen::AngleAxisd(0.03, Eigen::Vector3d(0.2, 1.0, 0.1).normalized()).toRotationMatrix();
-    T_target.translation() += Eigen::Vector3d(0.1, 0.02, 0.8);
+    T_target.linear() = T_host.linear() * Eigen::AngleAxisd(0.03, Eigen::Vector3d(0.2, 1.0, 0.1).normalized()).toRotationMatrix();
+    T_target.translation() += T_host.linear() * Eigen::Vector3d(0.1, 0.02, 0.8);
     host = factors::toParameters(T_host);
     target = factors::toParameters(T_target);
     ray = testCamera().backProject(250.0, 150.0, 1.0);
@@ -165,7 +167,7 @@ Eigen::Matrix<double, N, 1> expectPairJacobians(const ceres::CostFunction& facto
 
 TEST(WindowFactors, ForwardMotionJacobiansMatchCentralDifferences) {
   // The scene's target drifts 0.1 m to the side over 0.8 m: about 7 degrees off the axis.
-  const Scene scene;
+  const Scene scene(0.5);  // turned in the world: the twists are in the camera frames
   ForwardMotionOptions options;
   options.sigma_deg = 5.0;
   const std::unique_ptr<factors::TravelDirectionFactor> factor(
@@ -174,7 +176,7 @@ TEST(WindowFactors, ForwardMotionJacobiansMatchCentralDifferences) {
 }
 
 TEST(WindowFactors, MeasuredMotionIsFreeAtTheTruthAndHasExactJacobians) {
-  const Scene scene;
+  const Scene scene(0.5);
   const Eigen::Isometry3d T_earlier_later = factors::fromParameters(scene.host.data()).inverse() * factors::fromParameters(scene.target.data());
   const double sigma = 0.5 * M_PI / 180.0;
   const factors::TravelDirectionFactor direction(T_earlier_later.translation(), sigma, T_earlier_later.translation().norm());
@@ -191,6 +193,11 @@ TEST(WindowFactors, MeasuredMotionIsFreeAtTheTruthAndHasExactJacobians) {
   const Eigen::Vector3d travel = T_earlier_later.translation().normalized();
   const double off = std::acos(travel.dot(turn * travel));  // under 3 degrees: the travel is not across the axis
   EXPECT_NEAR(expectPairJacobians<2>(direction_off, scene).norm(), std::sin(off) / sigma, 1e-6);
+
+  // 20 degrees off about a tilted axis: the Jacobians' second-order terms matter (about 1 %).
+  const Eigen::Matrix3d far = Eigen::AngleAxisd(20.0 * M_PI / 180.0, Eigen::Vector3d(0.5, 1.0, 0.3).normalized()).toRotationMatrix();
+  const factors::RelativeRotationFactor rotation_far(T_earlier_later.linear() * far, sigma);
+  EXPECT_NEAR(expectPairJacobians<3>(rotation_far, scene).norm(), 20.0 / 0.5, 1e-6);
 }
 
 TEST(WindowFactors, PoseManifoldPlusAndMinusAreInverse) {

@@ -21,6 +21,7 @@ class RelativeRotationFactor : public ceres::SizedCostFunction<3, 7, 7> {
     if (!jacobians) return true;
     // log(M exp(w)) moves by Jr^-1(phi) w; log(R_m^T exp(-w) R_m M) = log(exp(-R_m^T w) M) by -Jl^-1(phi) R_m^T w.
     const double angle = error.angle();
+    if (angle > M_PI - 1e-3) return false;  // turned half way round: the Jacobians are singular
     const double c = angle < 1e-4 ? 1.0 / 12.0 : 1.0 / (angle * angle) - (1.0 + std::cos(angle)) / (2.0 * angle * std::sin(angle));
     const Eigen::Matrix3d K = skew(phi), K2 = c * K * K;
     if (jacobians[0]) {
