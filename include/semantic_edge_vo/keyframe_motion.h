@@ -27,6 +27,10 @@ struct KeyframeMotionOptions {
   /// depths, triangulated along the same error, agree with.
   double reanchor_rotation_deg = 0.3;
   double reanchor_direction_deg = 2.0;
+  /// ... but not farther than this (deg): such a measurement is more likely wrong (corners on
+  /// traffic) than the tracking that far off, and the window's robust priors handle it instead.
+  double reanchor_max_rotation_deg = 10.0;
+  double reanchor_max_direction_deg = 45.0;
 
   std::string validate() const;
 };
@@ -56,7 +60,8 @@ class KeyframeMotion {
 };
 
 /// Moves the pose of a new keyframe onto its measured motion from an earlier keyframe (its distance
-/// from it kept) when its own motion is farther than the options allow from the measured one.
+/// from it kept) when its own motion is farther than the options' gates from the measured one, and
+/// not implausibly far (reanchor_max_*).
 /// @return true when it moved
 bool reanchor(const MeasuredMotion& measured, const KeyframeMotionOptions& options, const Eigen::Isometry3d& T_world_earlier,
               Eigen::Isometry3d* T_world_new);

@@ -31,7 +31,9 @@ std::string KeyframeMotionOptions::validate() const {
   if (corners < 0 || window < 3 || min_inliers < 5) return "keyframe_motion: need corners >= 0, window >= 3 px, min_inliers >= 5";
   if (!(min_distance >= 0 && ransac_threshold > 0 && min_parallax >= 0))
     return "keyframe_motion: min_distance and min_parallax must be >= 0 px, ransac_threshold > 0 px";
-  if (!(reanchor_rotation_deg > 0 && reanchor_direction_deg > 0)) return "keyframe_motion: reanchor_rotation and reanchor_direction must be > 0 deg";
+  if (!(reanchor_rotation_deg > 0 && reanchor_direction_deg > 0 && reanchor_max_rotation_deg >= reanchor_rotation_deg &&
+        reanchor_max_direction_deg >= reanchor_direction_deg))
+    return "keyframe_motion: need 0 < reanchor_rotation <= reanchor_max_rotation and 0 < reanchor_direction <= reanchor_max_direction (deg)";
   return "";
 }
 
@@ -75,6 +77,7 @@ bool reanchor(const MeasuredMotion& measured, const KeyframeMotionOptions& optio
   const double rotation_off = Eigen::AngleAxisd(measured.R_from_this.transpose() * T_earlier_new.linear()).angle();
   const double direction_off = std::acos(std::clamp(T_earlier_new.translation().dot(measured.direction) / distance, -1.0, 1.0));
   if (rotation_off <= radians(options.reanchor_rotation_deg) && direction_off <= radians(options.reanchor_direction_deg)) return false;
+  if (rotation_off > radians(options.reanchor_max_rotation_deg) || direction_off > radians(options.reanchor_max_direction_deg)) return false;
   T_earlier_new.linear() = measured.R_from_this;
   T_earlier_new.translation() = distance * measured.direction;
   *T_world_new = orthonormalized(T_world_earlier * T_earlier_new);

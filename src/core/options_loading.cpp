@@ -73,6 +73,8 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("keyframe_motion/min_parallax", &motion.min_parallax, "px");
   loader->load("keyframe_motion/reanchor_rotation", &motion.reanchor_rotation_deg, "deg");
   loader->load("keyframe_motion/reanchor_direction", &motion.reanchor_direction_deg, "deg");
+  loader->load("keyframe_motion/reanchor_max_rotation", &motion.reanchor_max_rotation_deg, "deg");
+  loader->load("keyframe_motion/reanchor_max_direction", &motion.reanchor_max_direction_deg, "deg");
   return options->validate();
 }
 

@@ -120,7 +120,7 @@ TEST(KeyframeMotion, MeasuresTheTrueMotionBetweenSyntheticKeyframes) {
   EXPECT_LT(directionOffDeg(from_next.direction, (last.T_world_cam.inverse() * next.T_world_cam).translation()), 1.0);
 }
 
-TEST(KeyframeMotion, ReanchorsOnlyAKeyframeFarOffItsMeasuredMotion) {
+TEST(KeyframeMotion, ReanchorsOnlyAKeyframeFarOffItsMeasuredMotionButNotImplausiblyFar) {
   Eigen::Isometry3d T_world_earlier = Eigen::Isometry3d::Identity();
   T_world_earlier.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d(0.1, 1.0, 0.0).normalized()).toRotationMatrix();
   T_world_earlier.translation() = Eigen::Vector3d(3.0, -0.2, 10.0);
@@ -149,6 +149,11 @@ TEST(KeyframeMotion, ReanchorsOnlyAKeyframeFarOffItsMeasuredMotion) {
     EXPECT_LT(directionOffDeg(T_earlier_new.translation(), measured.direction), 1e-6);
     EXPECT_TRUE(T_earlier_new.linear().isApprox(measured.R_from_this, 1e-9));
   }
+
+  Eigen::Isometry3d implausible = newPose(60.0, 0.0);  // beyond reanchor_max_direction: not believed
+  const Eigen::Isometry3d implausible_before = implausible;
+  EXPECT_FALSE(reanchor(measured, options, T_world_earlier, &implausible));
+  EXPECT_TRUE(implausible.isApprox(implausible_before));
 
   MeasuredMotion unmeasured = measured;
   unmeasured.from_id = -1;
