@@ -23,8 +23,8 @@ class CornerTracks {
 
   const std::vector<cv::Point2f>& first() const { return first_; }      ///< where each track started
   const std::vector<cv::Point2f>& current() const { return current_; }  ///< where it is in the last frame
-  const std::vector<int>& ids() const { return ids_; }                  ///< index of each track in reset()'s pixels
-  int framesTracked() const { return frames_; }                         ///< track() calls since reset()
+  const std::vector<int>& ids() const { return ids_; }                  ///< index of each track in the pixels it started from
+  int framesTracked() const { return frames_; }                         ///< track() calls since reset() or restart()
 
  private:
   std::vector<cv::Mat> pyramid(const cv::Mat& gray) const;
