@@ -182,6 +182,31 @@ bool FieldLevelView::nearest(int layer, float x, float y, float max_radius, Fiel
   return true;
 }
 
+bool FieldLevelView::anyWithin(int layer, float x, float y, float radius) const {
+  const std::size_t cells = static_cast<std::size_t>(grid_cols) * grid_rows;
+  const std::uint32_t* starts = cell_start.data() + static_cast<std::size_t>(layer) * cells;
+  const float cs = static_cast<float>(cell_size);
+  // Buckets hold seeds by floor((coordinate + 0.5) / cell_size), clamped to the grid; the margin
+  // keeps a seed exactly on the disc's border inside the scanned range despite rounding.
+  const float reach = radius + 0.01f;
+  const auto bucket = [cs](float coordinate, int count) {
+    return std::clamp(static_cast<int>(std::floor((coordinate + 0.5f) / cs)), 0, count - 1);
+  };
+  const int x0 = bucket(x - reach, grid_cols), x1 = bucket(x + reach, grid_cols);
+  const int y0 = bucket(y - reach, grid_rows), y1 = bucket(y + reach, grid_rows);
+  const float max_d2 = radius * radius;
+  for (int cy = y0; cy <= y1; ++cy) {
+    const std::size_t row = static_cast<std::size_t>(cy) * grid_cols;
+    // The row's buckets x0..x1 are contiguous in the index: one run of entries.
+    for (std::uint32_t e = starts[row + x0]; e < starts[row + x1 + 1]; ++e) {
+      const std::uint32_t s = entry_seed[e];
+      const float du = seed_u[s] - x, dv = seed_v[s] - y;
+      if (du * du + dv * dv <= max_d2) return true;
+    }
+  }
+  return false;
+}
+
 std::string FieldLevelView::validate(int num_layers) const {
   std::ostringstream error;
   const std::size_t seeds = seed_u.size();

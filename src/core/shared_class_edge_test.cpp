@@ -54,10 +54,10 @@ bool SharedClassEdgeTest::operator()(std::uint32_t class_mask, float x, float y)
     const std::uint32_t near = near_layers_[static_cast<std::size_t>(py) * width_ + px];
     if (!(semantic ? near & class_mask : near)) return false;  // no seed of a wanted layer that close
   }
-  FieldMatch match;
+  const FieldLevelView& level = field_.levels[0];
   for (int layer = 0; layer < field_.num_layers; ++layer) {
     const bool wanted = !semantic || ((class_mask >> layer) & 1u);
-    if (wanted && field_.nearestWithin(0, layer, x, y, radius_, &match)) return true;
+    if (wanted && level.anyWithin(layer, x, y, radius_)) return true;
   }
   return false;
 }

@@ -1,3 +1,4 @@
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -46,7 +47,7 @@ class FieldAgainstBruteForce : public ::testing::TestWithParam<FieldKind> {
   }
 };
 
-TEST_P(FieldAgainstBruteForce, NearestIsExactAtEveryLevelAndLayer) {
+TEST_P(FieldAgainstBruteForce, NearestAndAnyWithinAreExactAtEveryLevelAndLayer) {
   const EdgeSet edges = randomEdges(600, width, height, classes, 42);
   FieldOptions options = kindOptions();
   options.pyramid_levels = 3;
@@ -73,6 +74,9 @@ TEST_P(FieldAgainstBruteForce, NearestIsExactAtEveryLevelAndLayer) {
         FieldMatch match;
         const bool hit = field.nearest(level, layer, x, y, &match);
         ++checked;
+        const float radius = std::array<float, 4>{0.5f, 1.5f, 4.0f, 9.0f}[static_cast<std::size_t>(q % 4)];
+        EXPECT_EQ(field.levels[static_cast<std::size_t>(level)].anyWithin(layer, x, y, radius), best <= radius)
+            << "anyWithin " << radius << " at level " << level << " layer " << layer << " query " << x << "," << y;
         if (best <= options.truncation_radius) {
           ASSERT_TRUE(hit) << "level " << level << " layer " << layer << " query " << x << "," << y;
           EXPECT_NEAR(match.distance, best, 1e-4f);
