@@ -6,6 +6,7 @@
 
 #include "semantic_edge_vo/map_point.h"
 #include "semantic_edge_vo/odometry_frame.h"
+#include "semantic_edge_vo/shared_class_edge_test.h"
 
 namespace semantic_edge_vo {
 
@@ -23,6 +24,9 @@ struct Keyframe {
   std::shared_ptr<const OdometryFrame> frame;  ///< the frame it was made from (pyramid, field, index, time)
   std::vector<MapPoint> points;                ///< hosted points; those with observations > 0 have a measured depth
   MeasuredMotion measured_motion;
+  /// Edges of the frame's field near each pixel, for epipolar searches into this keyframe: kept from
+  /// when the frame was tracked (null: no field, or the frame was not searched into then).
+  std::shared_ptr<const SharedClassEdgeTest> edge_test;
 };
 
 }  // namespace semantic_edge_vo

@@ -86,7 +86,7 @@ class Odometry {
   /// measured points, then an epipolar search against it.
   void triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const;
   /// Epipolar search of each point of the host in the target, fused into its depth filter.
-  void measureDepths(const PyramidLevel& host, const PyramidLevel& target, const NearestNeighborFieldView* target_field,
+  void measureDepths(const PyramidLevel& host, const PyramidLevel& target, const SharedClassEdgeTest* target_edges,
                      const Eigen::Isometry3d& T_target_host, std::vector<MapPoint>* points) const;
   /// Optimises the window at a new keyframe: in line, or started on its own thread.
   void optimizeWindow(int frame_index, FramePose* pose);
@@ -124,6 +124,9 @@ class Odometry {
   Eigen::Isometry3d T_world_last_ = Eigen::Isometry3d::Identity(), T_world_before_ = Eigen::Isometry3d::Identity();
   int poses_seen_ = 0;
   double last_inlier_ratio_ = 1.0;  ///< photometric inlier ratio of the last tracked frame (1: none)
+  /// The last tracked frame's edge test: it goes with the frame if the frame becomes a keyframe.
+  std::shared_ptr<const SharedClassEdgeTest> last_edge_test_;
+  int last_edge_test_frame_ = -1;
 };
 
 }  // namespace semantic_edge_vo

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <sstream>
 
 namespace semantic_edge_vo {
@@ -13,6 +12,10 @@ namespace {
 
 double elapsedMs(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
+}
+
+std::shared_ptr<const SharedClassEdgeTest> edgeTestOf(const OdometryFrame& frame, double radius) {
+  return frame.has_field ? std::make_shared<const SharedClassEdgeTest>(frame.field, radius) : nullptr;
 }
 
 cv::Mat gray8(const OdometryFrame& frame) {
@@ -278,7 +281,9 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
 void Odometry::refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf) {
   const PyramidLevel& host = active_->frame->pyramid->level(0);
   const PyramidLevel& target = frame.pyramid->level(0);
-  measureDepths(host, target, frame.fieldOrNull(), T_frame_kf, &active_->points);
+  last_edge_test_ = edgeTestOf(frame, options_.epipolar.edge_radius);
+  last_edge_test_frame_ = frame.index;
+  measureDepths(host, target, last_edge_test_.get(), T_frame_kf, &active_->points);
   tracker_.setKeyframe(active_);
 }
 
@@ -291,6 +296,7 @@ Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFra
   keyframe->id = next_keyframe_id_++;
   keyframe->T_world_cam = T_world_cam;
   keyframe->frame = frame;
+  if (last_edge_test_frame_ == frame->index) keyframe->edge_test = last_edge_test_;  // made by refineDepths
   keyframe->measured_motion = keyframe_motion_.measure(frame->index);
   reanchor(keyframe->measured_motion, options_.keyframe_motion, active_->T_world_cam, &keyframe->T_world_cam);
   keyframes_.push_back(keyframe);
@@ -320,19 +326,18 @@ void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) c
   // Measure the new points at once against the previous keyframe: the widest baseline at hand.
   const Eigen::Isometry3d T_old_new = T_new_old.inverse();
   const PyramidLevel& host = keyframe->frame->pyramid->level(0);
-  measureDepths(host, previous.frame->pyramid->level(0), previous.frame->fieldOrNull(), T_old_new, &keyframe->points);
+  const std::shared_ptr<const SharedClassEdgeTest> previous_edges =
+      previous.edge_test ? previous.edge_test : edgeTestOf(*previous.frame, options_.epipolar.edge_radius);
+  measureDepths(host, previous.frame->pyramid->level(0), previous_edges.get(), T_old_new, &keyframe->points);
 }
 
-void Odometry::measureDepths(const PyramidLevel& host, const PyramidLevel& target, const NearestNeighborFieldView* target_field,
+void Odometry::measureDepths(const PyramidLevel& host, const PyramidLevel& target, const SharedClassEdgeTest* target_edges,
                              const Eigen::Isometry3d& T_target_host, std::vector<MapPoint>* points) const {
-  std::optional<SharedClassEdgeTest> target_edges;
-  if (target_field) target_edges.emplace(*target_field, options_.epipolar.edge_radius);
-  const SharedClassEdgeTest* edge_test = target_edges ? &*target_edges : nullptr;
   // Each point is searched and filtered on its own: both cores, same result as in order.
   forEachIndex(points->size(), [&](std::size_t i) {
     DepthMeasurement measurement;
     MapPoint& point = (*points)[i];
-    if (searchEpipolar(point, host, target, edge_test, T_target_host, options_.epipolar, &measurement)) fuseDepth(measurement, &point);
+    if (searchEpipolar(point, host, target, target_edges, T_target_host, options_.epipolar, &measurement)) fuseDepth(measurement, &point);
   });
 }
 
