@@ -33,7 +33,8 @@ struct DepthMeasurement {
 /// Searches a host keyframe point along its epipolar line in a target frame (zero-mean intensity
 /// pattern warped by the candidate depth, as DSO's immature points do; only where the image gradient
 /// crosses the line; edge points only where `target_edges`, when given, finds an edge of a class the
-/// point has, built with options.edge_radius from the target's field) and returns the inverse depth of the best,
+/// point has, or any edge where no position on the line has one of its classes; built with
+/// options.edge_radius from the target's field) and returns the inverse depth of the best,
 /// unique match with its variance. The point needs a prior (inverse_depth > 0 with its variance) that
 /// bounds the search. False when the frame adds no information or no unique match.
 bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const PyramidLevel& target,

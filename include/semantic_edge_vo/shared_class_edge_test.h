@@ -6,6 +6,9 @@
 
 namespace semantic_edge_vo {
 
+/// A class mask with every class: any edge.
+constexpr std::uint32_t kAllClasses = ~0u;
+
 /// Is there an edge of a class a point has (any edge for ANNF/ONNF fields) within `radius` of a
 /// pixel of a frame (full resolution)? The epipolar search asks this at every step along the line.
 /// A per-pixel mask of the layers with a seed near the pixel answers most queries at once; only
@@ -15,6 +18,8 @@ class SharedClassEdgeTest {
   SharedClassEdgeTest(const NearestNeighborFieldView& field, double radius);
 
   bool operator()(std::uint32_t class_mask, float x, float y) const;
+  /// Whether the class mask matters (a semantic field); otherwise every edge counts.
+  bool classRestricted() const { return field_.kind == FieldKind::kSnnf; }
 
  private:
   const NearestNeighborFieldView& field_;

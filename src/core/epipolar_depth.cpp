@@ -76,28 +76,40 @@ bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const Pyram
   const int steps = std::max(2, static_cast<int>(std::ceil(2.0 * (b - a).norm())));  // half-pixel steps
   std::vector<double> errors(static_cast<std::size_t>(steps + 1), std::numeric_limits<double>::max());
   int best = -1;
-  for (int s = 0; s <= steps; ++s) {
-    const double rho = rho_min + (rho_max - rho_min) * s / steps;
-    Eigen::Vector2d pixel;
-    if (!pixelAt(rho, &pixel) || !target.camera.contains(pixel.x(), pixel.y(), 4.0)) continue;
-    const float x = static_cast<float>(pixel.x()), y = static_cast<float>(pixel.y());
-    if (point.isEdge() && target_edges && !(*target_edges)(point.class_mask, x, y)) continue;
-    float values[kPattern];
-    float mean = 0.0f;
-    bool inside = true;
-    for (int j = 0; j < kPattern && inside; ++j) {
-      const Eigen::Vector3d q = rays[j] + rho * t;
-      const Eigen::Vector2d warped = target.camera.project(q);
-      inside = q.z() > 1e-6 && target.camera.contains(warped.x(), warped.y(), 1.0);
-      if (inside) values[j] = sampleBilinear(target.intensity, static_cast<float>(warped.x()), static_cast<float>(warped.y()));
-      mean += values[j] / kPattern;
+  const bool edge_gated = point.isEdge() && target_edges;
+  // Scores the positions on the line (edge points: those with an edge of one of `classes` near);
+  // returns how many passed that edge test.
+  const auto scanLine = [&](std::uint32_t classes) {
+    int edge_positions = 0;
+    for (int s = 0; s <= steps; ++s) {
+      const double rho = rho_min + (rho_max - rho_min) * s / steps;
+      Eigen::Vector2d pixel;
+      if (!pixelAt(rho, &pixel) || !target.camera.contains(pixel.x(), pixel.y(), 4.0)) continue;
+      const float x = static_cast<float>(pixel.x()), y = static_cast<float>(pixel.y());
+      if (edge_gated && !(*target_edges)(classes, x, y)) continue;
+      ++edge_positions;
+      float values[kPattern];
+      float mean = 0.0f;
+      bool inside = true;
+      for (int j = 0; j < kPattern && inside; ++j) {
+        const Eigen::Vector3d q = rays[j] + rho * t;
+        const Eigen::Vector2d warped = target.camera.project(q);
+        inside = q.z() > 1e-6 && target.camera.contains(warped.x(), warped.y(), 1.0);
+        if (inside) values[j] = sampleBilinear(target.intensity, static_cast<float>(warped.x()), static_cast<float>(warped.y()));
+        mean += values[j] / kPattern;
+      }
+      if (!inside) continue;
+      double error = 0.0;
+      for (int j = 0; j < kPattern; ++j) error += std::pow(values[j] - mean - reference[j], 2);
+      errors[static_cast<std::size_t>(s)] = error;
+      if (best < 0 || error < errors[static_cast<std::size_t>(best)]) best = s;
     }
-    if (!inside) continue;
-    double error = 0.0;
-    for (int j = 0; j < kPattern; ++j) error += std::pow(values[j] - mean - reference[j], 2);
-    errors[static_cast<std::size_t>(s)] = error;
-    if (best < 0 || error < errors[static_cast<std::size_t>(best)]) best = s;
-  }
+    return edge_positions;
+  };
+  // Edge points match only where the target has an edge of a class they have. Where the whole line
+  // has none, the point's classes are missing there (a label that flickered between the frames):
+  // any edge will do then, rather than no measurement (the paper's soft association, Sec. III-B).
+  if (scanLine(point.class_mask) == 0 && edge_gated && target_edges->classRestricted()) scanLine(kAllClasses);
   if (best < 0) return false;
   const double best_error = errors[static_cast<std::size_t>(best)];
   if (std::sqrt(best_error / kPattern) > options.max_pattern_error) return false;
