@@ -76,11 +76,14 @@ class Odometry {
   std::vector<FramePose> initialize(const std::shared_ptr<const OdometryFrame>& frame);
   void startInitialization(const std::shared_ptr<const OdometryFrame>& frame);
   FramePose track(const std::shared_ptr<const OdometryFrame>& frame);
-  /// Refines the active keyframe's depths with a tracked frame.
-  void refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf);
+  /// Refines the active keyframe's depths with a tracked frame. Returns the frame's edge test (null
+  /// without a field), which the frame keeps if it becomes a keyframe.
+  std::shared_ptr<const SharedClassEdgeTest> refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf);
   /// Makes the frame a keyframe: it joins the window, the windowed optimisation settles its pose
-  /// (in line), then its points are triangulated. Returns its pose.
-  Eigen::Isometry3d makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, Eigen::Isometry3d T_world_cam,
+  /// (in line), then its points are triangulated. It keeps `frame_edges` (refineDepths' test) for
+  /// the next keyframe's epipolar search. Returns its pose.
+  Eigen::Isometry3d makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame,
+                                 std::shared_ptr<const SharedClassEdgeTest> frame_edges, Eigen::Isometry3d T_world_cam,
                                  FramePose* pose);
   /// The keyframe's points from its frame's candidates: prior depths from the previous keyframe's
   /// measured points, then an epipolar search against it.
@@ -124,9 +127,6 @@ class Odometry {
   Eigen::Isometry3d T_world_last_ = Eigen::Isometry3d::Identity(), T_world_before_ = Eigen::Isometry3d::Identity();
   int poses_seen_ = 0;
   double last_inlier_ratio_ = 1.0;  ///< photometric inlier ratio of the last tracked frame (1: none)
-  /// The last tracked frame's edge test: it goes with the frame if the frame becomes a keyframe.
-  std::shared_ptr<const SharedClassEdgeTest> last_edge_test_;
-  int last_edge_test_frame_ = -1;
 };
 
 }  // namespace semantic_edge_vo

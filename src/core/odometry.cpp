@@ -265,12 +265,12 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
   pose.trusted = true;
   pose.state = OdometryState::kTracking;
   const auto mapping_start = std::chrono::steady_clock::now();
-  refineDepths(*frame, pose.tracking.T_cam_kf);
+  std::shared_ptr<const SharedClassEdgeTest> frame_edges = refineDepths(*frame, pose.tracking.T_cam_kf);
   followCorners(*frame);
   ++frames_since_keyframe_;
   const bool few_in_view = pose.tracking.points_in_view < options_.keyframe_min_in_view * pose.tracking.points;
   if (pose.tracking.mean_flow > options_.keyframe_flow || few_in_view || frames_since_keyframe_ >= options_.keyframe_max_interval) {
-    pose.T_world_cam = makeKeyframe(frame, pose.T_world_cam, &pose);
+    pose.T_world_cam = makeKeyframe(frame, std::move(frame_edges), pose.T_world_cam, &pose);
     pose.keyframe = true;
   }
   pose.mapping_ms = elapsedMs(mapping_start);
@@ -278,16 +278,17 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
   return pose;
 }
 
-void Odometry::refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf) {
+std::shared_ptr<const SharedClassEdgeTest> Odometry::refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf) {
   const PyramidLevel& host = active_->frame->pyramid->level(0);
   const PyramidLevel& target = frame.pyramid->level(0);
-  last_edge_test_ = edgeTestOf(frame, options_.epipolar.edge_radius);
-  last_edge_test_frame_ = frame.index;
-  measureDepths(host, target, last_edge_test_.get(), T_frame_kf, &active_->points);
+  std::shared_ptr<const SharedClassEdgeTest> edges = edgeTestOf(frame, options_.epipolar.edge_radius);
+  measureDepths(host, target, edges.get(), T_frame_kf, &active_->points);
   tracker_.setKeyframe(active_);
+  return edges;
 }
 
-Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, Eigen::Isometry3d T_world_cam,
+Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame,
+                                         std::shared_ptr<const SharedClassEdgeTest> frame_edges, Eigen::Isometry3d T_world_cam,
                                          FramePose* pose) {
   // One deferred optimisation at a time: the previous one is merged first, and the new keyframe,
   // tracked against the active one, moves with it.
@@ -296,7 +297,7 @@ Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFra
   keyframe->id = next_keyframe_id_++;
   keyframe->T_world_cam = T_world_cam;
   keyframe->frame = frame;
-  if (last_edge_test_frame_ == frame->index) keyframe->edge_test = last_edge_test_;  // made by refineDepths
+  keyframe->edge_test = std::move(frame_edges);
   keyframe->measured_motion = keyframe_motion_.measure(frame->index);
   reanchor(keyframe->measured_motion, options_.keyframe_motion, active_->T_world_cam, &keyframe->T_world_cam);
   keyframes_.push_back(keyframe);

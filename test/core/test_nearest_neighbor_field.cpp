@@ -75,8 +75,9 @@ TEST_P(FieldAgainstBruteForce, NearestAndAnyWithinAreExactAtEveryLevelAndLayer) 
         const bool hit = field.nearest(level, layer, x, y, &match);
         ++checked;
         const float radius = std::array<float, 4>{0.5f, 1.5f, 4.0f, 9.0f}[static_cast<std::size_t>(q % 4)];
-        EXPECT_EQ(field.levels[static_cast<std::size_t>(level)].anyWithin(layer, x, y, radius), best <= radius)
-            << "anyWithin " << radius << " at level " << level << " layer " << layer << " query " << x << "," << y;
+        const bool any = field.levels[static_cast<std::size_t>(level)].anyWithin(layer, x, y, radius);
+        EXPECT_EQ(any, best <= radius) << "anyWithin " << radius << " at level " << level << " layer " << layer << " query " << x << "," << y;
+        EXPECT_EQ(any, field.nearestWithin(level, layer, x, y, radius, &match)) << "anyWithin and nearestWithin disagree";
         if (best <= options.truncation_radius) {
           ASSERT_TRUE(hit) << "level " << level << " layer " << layer << " query " << x << "," << y;
           EXPECT_NEAR(match.distance, best, 1e-4f);
@@ -91,6 +92,38 @@ TEST_P(FieldAgainstBruteForce, NearestAndAnyWithinAreExactAtEveryLevelAndLayer) 
     }
   }
   EXPECT_GT(found, checked / 4) << "the test should mostly exercise hits";
+}
+
+TEST_P(FieldAgainstBruteForce, AnyWithinAgreesWithNearestOnTheDiscBorder) {
+  // Queries a hair inside and outside the radius around seeds, in every direction, also across
+  // bucket borders: where float rounding decides, both lookups must decide alike.
+  const EdgeSet edges = randomEdges(300, width, height, classes, 5);
+  FieldOptions options = kindOptions();
+  options.pyramid_levels = 1;
+  options.cell_size = 4;
+  const NearestNeighborFieldData data = build(edges, options);
+  const NearestNeighborFieldView field = data.view();
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> angle(-3.14159f, 3.14159f);
+  int inside = 0, checked = 0;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    for (const float radius : {1.5f, 3.0f, 4.0f}) {
+      for (const float factor : {0.9999999f, 1.0f, 1.0000001f}) {
+        const float a = angle(rng);
+        const float x = edges.u[i] + radius * factor * std::cos(a), y = edges.v[i] + radius * factor * std::sin(a);
+        for (int layer = 0; layer < field.num_layers; ++layer) {
+          FieldMatch match;
+          const bool expected = field.nearestWithin(0, layer, x, y, radius, &match);
+          ASSERT_EQ(field.levels[0].anyWithin(layer, x, y, radius), expected)
+              << "seed " << edges.u[i] << "," << edges.v[i] << " query " << x << "," << y << " radius " << radius << " layer " << layer;
+          inside += expected;
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_GT(inside, checked / 20) << "the test should exercise both answers";  // ONNF: 8 layers, a seed in one
+  EXPECT_LT(inside, checked) << "the test should exercise both answers";
 }
 
 TEST_P(FieldAgainstBruteForce, SharedClassEdgeTestAgreesWithBruteForce) {
