@@ -48,7 +48,7 @@ SharedClassEdgeTest::SharedClassEdgeTest(const NearestNeighborFieldView& field, 
 }
 
 bool SharedClassEdgeTest::operator()(std::uint32_t class_mask, float x, float y) const {
-  const bool semantic = field_.kind == FieldKind::kSnnf;
+  const bool semantic = classRestricted();
   const int px = static_cast<int>(std::lround(x)), py = static_cast<int>(std::lround(y));
   if (px >= 0 && py >= 0 && px < width_ && py < height_ && field_.num_layers <= 32) {
     const std::uint32_t near = near_layers_[static_cast<std::size_t>(py) * width_ + px];
