@@ -6,6 +6,7 @@
 
 #include "semantic_edge_vo/camera.h"
 #include "semantic_edge_vo/corner_tracks.h"
+#include "semantic_edge_vo/forward_motion_prior.h"
 #include "semantic_edge_vo/keyframe.h"
 
 namespace semantic_edge_vo {
@@ -21,6 +22,16 @@ struct KeyframeMotionOptions {
   /// Median flow of the agreeing corners once the measured rotation is taken out, px: below it the
   /// baseline is too short for a direction (a turn alone moves the corners too).
   double min_parallax = 3.0;
+  /// Sideways angle, deg, beyond which a measured direction of travel is off the chord a car travels
+  /// along for the measured rotation (forward_motion.chord). Seen on curves, from corners on traffic
+  /// and from distant corners, whose essential matrix trades a yaw error for sideways travel
+  /// (bas-relief ambiguity). Such a measurement, or none (too few corners agree), is replaced by the
+  /// vehicle's motion (estimateVehicleMotion: the rotation alone, travel on the chord). Only sideways:
+  /// a camera's mount pitch is rarely known to a degree (KITTI's travels about 1 deg above its axis).
+  /// 0, or forward_motion off: neither the check nor the replacement.
+  double max_chord_deviation_deg = 2.0;
+  /// The vehicle's axis of travel (the loader sets the tracker's).
+  ForwardMotionOptions forward_motion;
   /// A new keyframe whose tracked motion from the active one is farther than this from the measured
   /// motion (rotation, deg; direction of travel, deg) is moved onto the measured motion (its distance
   /// kept) before the windowed optimisation: the window's priors alone barely move a pose that the
@@ -48,8 +59,9 @@ class KeyframeMotion {
   void follow(int frame_index, const cv::Mat& gray);
   /// The motion from the keyframe the corners started at to frame `frame_index`, which they must
   /// have been followed into last; not measured (from_id -1) otherwise, or with too few agreeing
-  /// corners or too little parallax.
-  MeasuredMotion measure(int frame_index) const;
+  /// corners or too little parallax. `R_from_this_guess` (the frame's orientation in the keyframe,
+  /// as tracked) starts the vehicle-motion fit.
+  MeasuredMotion measure(int frame_index, const Eigen::Matrix3d& R_from_this_guess) const;
 
  private:
   KeyframeMotionOptions options_;

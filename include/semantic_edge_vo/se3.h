@@ -15,6 +15,8 @@ inline Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
 /// The same pose with its rotation made exactly orthonormal again (long products drift).
 Eigen::Isometry3d orthonormalized(const Eigen::Isometry3d& pose);
 
+/// SO(3) exponential: the rotation by |w| radians about w.
+Eigen::Matrix3d so3Exp(const Eigen::Vector3d& w);
 /// SE(3) exponential of a twist (v, w): translation part first, rotation part last.
 Eigen::Isometry3d se3Exp(const Vector6d& twist);
 /// Inverse of se3Exp (rotation angle below pi).

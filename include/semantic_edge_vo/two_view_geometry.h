@@ -6,6 +6,7 @@
 #include <opencv2/core/types.hpp>
 
 #include "semantic_edge_vo/camera.h"
+#include "semantic_edge_vo/forward_motion_prior.h"
 
 namespace semantic_edge_vo {
 
@@ -22,5 +23,14 @@ struct TwoViewMotion {
 /// essential matrix is degenerate or fewer than `min_inliers` correspondences agree with the motion.
 bool estimateTwoViewMotion(const std::vector<cv::Point2f>& first, const std::vector<cv::Point2f>& second,
                            const PinholeCamera& camera, double threshold, int min_inliers, TwoViewMotion* motion);
+
+/// The motion of a camera on a vehicle, which travels along `forward.chord` of its rotation (no side
+/// slip): only the rotation is fitted, to the Sampson errors of all correspondences (Huber at
+/// `threshold` px, Gauss-Newton from `R_second_first_guess`). Parallel traffic moves along the same
+/// direction and fits it too; distant corners cannot trade a yaw error for sideways travel.
+/// False when fewer than `min_inliers` correspondences lie within `threshold` px.
+bool estimateVehicleMotion(const std::vector<cv::Point2f>& first, const std::vector<cv::Point2f>& second,
+                           const PinholeCamera& camera, const ForwardMotionOptions& forward, double threshold, int min_inliers,
+                           const Eigen::Matrix3d& R_second_first_guess, TwoViewMotion* motion);
 
 }  // namespace semantic_edge_vo

@@ -25,12 +25,20 @@ double medianParallax(const std::vector<cv::Point2f>& first, const std::vector<c
   return parallax.empty() ? 0.0 : median(parallax);
 }
 
+/// Sideways angle (about the optical y axis) from the vehicle's chord to the measured direction of travel, rad.
+double lateralDeviation(const TwoViewMotion& motion, const ForwardMotionOptions& forward) {
+  const Eigen::Matrix3d R_first_second = motion.R_second_first.transpose();
+  const Eigen::Vector3d direction = -(R_first_second * motion.t_second_first), chord = forward.chord(R_first_second);
+  return std::atan2(direction.x(), direction.z()) - std::atan2(chord.x(), chord.z());
+}
+
 }  // namespace
 
 std::string KeyframeMotionOptions::validate() const {
   if (corners < 0 || window < 3 || min_inliers < 5) return "keyframe_motion: need corners >= 0, window >= 3 px, min_inliers >= 5";
   if (!(min_distance >= 0 && ransac_threshold > 0 && min_parallax >= 0))
     return "keyframe_motion: min_distance and min_parallax must be >= 0 px, ransac_threshold > 0 px";
+  if (!(max_chord_deviation_deg >= 0)) return "keyframe_motion: max_chord_deviation must be >= 0 deg (0: off)";
   if (!(reanchor_rotation_deg > 0 && reanchor_direction_deg > 0 && reanchor_max_rotation_deg >= reanchor_rotation_deg &&
         reanchor_max_direction_deg >= reanchor_direction_deg))
     return "keyframe_motion: need 0 < reanchor_rotation <= reanchor_max_rotation and 0 < reanchor_direction <= reanchor_max_direction (deg)";
@@ -56,13 +64,23 @@ void KeyframeMotion::follow(int frame_index, const cv::Mat& gray) {
   frame_index_ = frame_index;
 }
 
-MeasuredMotion KeyframeMotion::measure(int frame_index) const {
+MeasuredMotion KeyframeMotion::measure(int frame_index, const Eigen::Matrix3d& R_from_this_guess) const {
   MeasuredMotion measured;
   if (!enabled() || keyframe_id_ < 0 || frame_index != frame_index_ || tracks_.framesTracked() == 0) return measured;
+  const std::vector<cv::Point2f>& first = tracks_.first();
+  const std::vector<cv::Point2f>& current = tracks_.current();
   TwoViewMotion motion;
-  if (!estimateTwoViewMotion(tracks_.first(), tracks_.current(), camera_, options_.ransac_threshold, options_.min_inliers, &motion))
-    return measured;
-  if (medianParallax(tracks_.first(), tracks_.current(), motion, camera_) < options_.min_parallax) return measured;
+  const bool vehicle = options_.max_chord_deviation_deg > 0.0 && options_.forward_motion.sigma_deg > 0.0;
+  bool found = estimateTwoViewMotion(first, current, camera_, options_.ransac_threshold, options_.min_inliers, &motion) &&
+               medianParallax(first, current, motion, camera_) >= options_.min_parallax;
+  if (found && vehicle) found = std::abs(lateralDeviation(motion, options_.forward_motion)) <= radians(options_.max_chord_deviation_deg);
+  // Off the chord, or not measured at all (too few corners agree with five free dimensions): the
+  // rotation alone, with the travel the vehicle allows.
+  if (!found && vehicle)
+    found = estimateVehicleMotion(first, current, camera_, options_.forward_motion, options_.ransac_threshold, options_.min_inliers,
+                                  R_from_this_guess.transpose(), &motion) &&
+            medianParallax(first, current, motion, camera_) >= options_.min_parallax;
+  if (!found) return measured;
   measured.from_id = keyframe_id_;
   measured.R_from_this = motion.R_second_first.transpose();
   measured.direction = -(measured.R_from_this * motion.t_second_first).normalized();  // the second centre, -R^T t

@@ -298,7 +298,7 @@ Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFra
   keyframe->T_world_cam = T_world_cam;
   keyframe->frame = frame;
   keyframe->edge_test = std::move(frame_edges);
-  keyframe->measured_motion = keyframe_motion_.measure(frame->index);
+  keyframe->measured_motion = keyframe_motion_.measure(frame->index, (active_->T_world_cam.inverse() * T_world_cam).linear());
   reanchor(keyframe->measured_motion, options_.keyframe_motion, active_->T_world_cam, &keyframe->T_world_cam);
   keyframes_.push_back(keyframe);
   while (static_cast<int>(keyframes_.size()) > options_.window_size) keyframes_.pop_front();

@@ -71,6 +71,8 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("keyframe_motion/ransac_threshold", &motion.ransac_threshold, "px");
   loader->load("keyframe_motion/min_inliers", &motion.min_inliers, "corners");
   loader->load("keyframe_motion/min_parallax", &motion.min_parallax, "px");
+  loader->load("keyframe_motion/max_chord_deviation", &motion.max_chord_deviation_deg, "deg (0: off)");
+  motion.forward_motion = tracker.forward_motion;
   loader->load("keyframe_motion/reanchor_rotation", &motion.reanchor_rotation_deg, "deg");
   loader->load("keyframe_motion/reanchor_direction", &motion.reanchor_direction_deg, "deg");
   loader->load("keyframe_motion/reanchor_max_rotation", &motion.reanchor_max_rotation_deg, "deg");

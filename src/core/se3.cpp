@@ -22,11 +22,15 @@ Eigen::Isometry3d orthonormalized(const Eigen::Isometry3d& pose) {
   return result;
 }
 
+Eigen::Matrix3d so3Exp(const Eigen::Vector3d& w) {
+  const double theta = w.norm();
+  return theta < 1e-12 ? Eigen::Matrix3d::Identity() : Eigen::AngleAxisd(theta, w / theta).toRotationMatrix();
+}
+
 Eigen::Isometry3d se3Exp(const Vector6d& twist) {
   const Eigen::Vector3d v = twist.head<3>(), w = twist.tail<3>();
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  const double theta = w.norm();
-  pose.linear() = theta < 1e-12 ? Eigen::Matrix3d::Identity() : Eigen::AngleAxisd(theta, w / theta).toRotationMatrix();
+  pose.linear() = so3Exp(w);
   pose.translation() = leftJacobian(w) * v;
   return pose;
 }

@@ -3,6 +3,8 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 
+#include "semantic_edge_vo/se3.h"
+
 namespace semantic_edge_vo {
 
 bool estimateTwoViewMotion(const std::vector<cv::Point2f>& first, const std::vector<cv::Point2f>& second,
@@ -19,6 +21,76 @@ bool estimateTwoViewMotion(const std::vector<cv::Point2f>& first, const std::vec
   cv::cv2eigen(t, motion->t_second_first);
   motion->inliers.assign(inliers.begin<std::uint8_t>(), inliers.end<std::uint8_t>());
   return true;
+}
+
+namespace {
+
+/// Unit translation of the vehicle motion with rotation R_second_first: the second centre lies along
+/// the chord in the first view, so t = -R c.
+Eigen::Vector3d vehicleTranslation(const Eigen::Matrix3d& R_second_first, const ForwardMotionOptions& forward) {
+  return -(R_second_first * forward.chord(R_second_first.transpose()));
+}
+
+/// Signed Sampson distance of a correspondence of normalised image points, in pixels of focal length f.
+double sampson(const Eigen::Matrix3d& E, const Eigen::Vector3d& x1, const Eigen::Vector3d& x2, double f) {
+  const Eigen::Vector3d Ex1 = E * x1, Etx2 = E.transpose() * x2;
+  const double norm = std::sqrt(Ex1.head<2>().squaredNorm() + Etx2.head<2>().squaredNorm());
+  return norm > 0.0 ? f * x2.dot(Ex1) / norm : 0.0;
+}
+
+}  // namespace
+
+bool estimateVehicleMotion(const std::vector<cv::Point2f>& first, const std::vector<cv::Point2f>& second,
+                           const PinholeCamera& camera, const ForwardMotionOptions& forward, double threshold, int min_inliers,
+                           const Eigen::Matrix3d& R_second_first_guess, TwoViewMotion* motion) {
+  const std::size_t n = first.size();
+  if (static_cast<int>(n) < std::max(min_inliers, 3)) return false;
+  std::vector<Eigen::Vector3d> x1(n), x2(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x1[i] = camera.backProject(first[i].x, first[i].y, 1.0);
+    x2[i] = camera.backProject(second[i].x, second[i].y, 1.0);
+  }
+  const double f = camera.fx;
+  const auto essential = [&](const Eigen::Matrix3d& R) -> Eigen::Matrix3d { return skew(vehicleTranslation(R, forward)) * R; };
+  Eigen::Matrix3d R = R_second_first_guess;
+  // Three parameters and a few hundred correspondences: central differences of a left rotation
+  // perturbation (through the chord's half turn) cost less than a millisecond.
+  constexpr double kStep = 1e-6;  // rad
+  constexpr int kMaxIterations = 20;
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    const Eigen::Matrix3d E = essential(R);
+    Eigen::Matrix3d E_plus[3], E_minus[3];
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d delta = kStep * Eigen::Vector3d::Unit(k);
+      E_plus[k] = essential(so3Exp(delta) * R);
+      E_minus[k] = essential(so3Exp(-delta) * R);
+    }
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double r = sampson(E, x1[i], x2[i], f);
+      Eigen::Vector3d J;
+      for (int k = 0; k < 3; ++k) J[k] = (sampson(E_plus[k], x1[i], x2[i], f) - sampson(E_minus[k], x1[i], x2[i], f)) / (2 * kStep);
+      const double weight = std::abs(r) <= threshold ? 1.0 : threshold / std::abs(r);  // Huber
+      H += weight * J * J.transpose();
+      b += weight * r * J;
+    }
+    const Eigen::Vector3d step = -H.ldlt().solve(b);
+    if (!step.allFinite()) return false;
+    R = so3Exp(step) * R;
+    if (step.norm() < 1e-9) break;
+  }
+  const Eigen::Matrix3d E = essential(R);
+  motion->R_second_first = R;
+  motion->t_second_first = vehicleTranslation(R, forward);
+  motion->inliers.assign(n, 0);
+  motion->inlier_count = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (std::abs(sampson(E, x1[i], x2[i], f)) <= threshold) {
+      motion->inliers[i] = 1;
+      ++motion->inlier_count;
+    }
+  return motion->inlier_count >= min_inliers;
 }
 
 }  // namespace semantic_edge_vo

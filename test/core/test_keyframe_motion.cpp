@@ -54,6 +54,54 @@ TEST(TwoViewMotion, RecoversRotationAndDirectionDespiteOutliers) {
   EXPECT_FALSE(estimateTwoViewMotion(first, second, camera, 0.5, 290, &motion));
 }
 
+TEST(TwoViewMotion, VehicleMotionHoldsOnDistantCornersAndParallelTraffic) {
+  const PinholeCamera camera = kittiCamera();
+  // A car on a bend: 1 degree of yaw to the left, travelling along the chord (half the turn).
+  const ForwardMotionOptions forward;
+  const Eigen::Matrix3d R_first_second = Eigen::AngleAxisd(-1.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Eigen::Vector3d travel = 2.0 * forward.chord(R_first_second);  // the second centre, first view
+  const Eigen::Matrix3d R = R_first_second.transpose();                  // x_second = R x_first + t
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> u(0.0, camera.width), v(0.0, camera.height), depth(40.0, 300.0), speed(-1.0, 2.0);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  std::vector<cv::Point2f> first, second;
+  enum class Kind { kStatic, kTraffic, kOutlier };
+  std::vector<Kind> kinds;
+  while (first.size() < 300) {
+    // Distant static corners; every fourth on a vehicle driving along the road (its own travel is
+    // parallel to ours: the same epipole); every tenth slid 6 px across its epipolar line.
+    const Kind kind = first.size() % 10 == 0 ? Kind::kOutlier : first.size() % 4 == 0 ? Kind::kTraffic : Kind::kStatic;
+    const Eigen::Vector3d p = camera.backProject(u(random), v(random), depth(random));
+    const Eigen::Vector3d own_travel = (kind == Kind::kTraffic ? speed(random) : 0.0) * travel;
+    const Eigen::Vector3d q = R * (p + own_travel - travel);
+    const Eigen::Vector2d a = camera.project(p);
+    Eigen::Vector2d b = camera.project(q);
+    if (q.z() <= 0.0 || !camera.contains(b.x(), b.y())) continue;
+    if (kind == Kind::kOutlier) {
+      const Eigen::Vector2d along = (b - camera.project(R * travel)).normalized();
+      b += 6.0 * Eigen::Vector2d(-along.y(), along.x());
+    }
+    first.emplace_back(static_cast<float>(a.x()), static_cast<float>(a.y()));
+    second.emplace_back(static_cast<float>(b.x() + noise(random)), static_cast<float>(b.y() + noise(random)));
+    kinds.push_back(kind);
+  }
+  TwoViewMotion motion;
+  // From no rotation at all (the tracker's guess is usually far closer).
+  ASSERT_TRUE(estimateVehicleMotion(first, second, camera, forward, 0.5, 50, Eigen::Matrix3d::Identity(), &motion));
+  EXPECT_LT(degrees(Eigen::AngleAxisd(motion.R_second_first.transpose() * R).angle()), 0.02);
+  EXPECT_LT(degrees(std::acos(std::min(1.0, motion.t_second_first.dot(-(R * travel).normalized())))), 0.02);
+  EXPECT_NEAR(motion.t_second_first.norm(), 1.0, 1e-9);
+  int outliers_kept = 0, traffic_kept = 0, traffic = 0;
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    outliers_kept += kinds[i] == Kind::kOutlier && motion.inliers[i];
+    traffic += kinds[i] == Kind::kTraffic;
+    traffic_kept += kinds[i] == Kind::kTraffic && motion.inliers[i];
+  }
+  EXPECT_EQ(outliers_kept, 0);
+  EXPECT_GE(traffic_kept, traffic * 8 / 10);  // noise puts a few beyond 0.5 px
+  EXPECT_FALSE(estimateVehicleMotion(first, second, camera, forward, 0.5, 295, Eigen::Matrix3d::Identity(), &motion));
+}
+
 TEST(CornerTracks, FollowsAShiftedImageAndStartsAtCorners) {
   cv::Mat texture(240, 320, CV_8UC1);
   cv::RNG(3).fill(texture, cv::RNG::UNIFORM, 0, 255);
@@ -93,14 +141,14 @@ TEST(KeyframeMotion, MeasuresTheTrueMotionBetweenSyntheticKeyframes) {
   KeyframeMotion motion(KeyframeMotionOptions{}, sequence.camera());
   const synthetic::SyntheticFrame keyframe = sequence.frame(10);
   motion.start(7, 10, keyframe.gray);
-  EXPECT_EQ(motion.measure(10).from_id, -1);  // nothing followed yet
+  EXPECT_EQ(motion.measure(10, Eigen::Matrix3d::Identity()).from_id, -1);  // nothing followed yet
   synthetic::SyntheticFrame last;
   for (int i = 11; i <= 16; ++i) {
     last = sequence.frame(i);
     motion.follow(i, last.gray);
   }
-  EXPECT_EQ(motion.measure(15).from_id, -1);  // not the frame the corners are in
-  const MeasuredMotion measured = motion.measure(16);
+  EXPECT_EQ(motion.measure(15, Eigen::Matrix3d::Identity()).from_id, -1);  // not the frame the corners are in
+  const MeasuredMotion measured = motion.measure(16, Eigen::Matrix3d::Identity());
   ASSERT_EQ(measured.from_id, 7);
   const Eigen::Isometry3d T_true = keyframe.T_world_cam.inverse() * last.T_world_cam;
   ASSERT_GT(T_true.translation().norm(), 3.0);  // the test drives: about 1.3 m per frame
@@ -115,9 +163,33 @@ TEST(KeyframeMotion, MeasuresTheTrueMotionBetweenSyntheticKeyframes) {
     next = sequence.frame(i);
     motion.follow(i, next.gray);
   }
-  const MeasuredMotion from_next = motion.measure(20);
+  const MeasuredMotion from_next = motion.measure(20, Eigen::Matrix3d::Identity());
   ASSERT_EQ(from_next.from_id, 8);
   EXPECT_LT(directionOffDeg(from_next.direction, (last.T_world_cam.inverse() * next.T_world_cam).translation()), 1.0);
+}
+
+TEST(KeyframeMotion, ReplacesAMeasurementOffTheVehicleChord) {
+  // The same drive, but the options claim a mount whose travel is 5 degrees right of the optical
+  // axis: the true, straight-ahead measurement is off that chord and the vehicle motion replaces it.
+  synthetic::SyntheticSequence sequence(synthetic::SyntheticSequenceOptions::forScene(synthetic::SceneType::kCity, 3));
+  const auto measureWith = [&](double max_chord_deviation_deg) {
+    KeyframeMotionOptions options;
+    options.forward_motion.yaw_deg = 5.0;
+    options.max_chord_deviation_deg = max_chord_deviation_deg;
+    KeyframeMotion motion(options, sequence.camera());
+    motion.start(7, 10, sequence.frame(10).gray);
+    for (int i = 11; i <= 16; ++i) motion.follow(i, sequence.frame(i).gray);
+    return std::make_pair(motion.measure(16, Eigen::Matrix3d::Identity()), options.forward_motion);
+  };
+  const Eigen::Isometry3d T_true = sequence.frame(10).T_world_cam.inverse() * sequence.frame(16).T_world_cam;
+  const auto [replaced, forward] = measureWith(2.0);
+  ASSERT_EQ(replaced.from_id, 7);
+  EXPECT_LT(directionOffDeg(replaced.direction, forward.chord(replaced.R_from_this)), 1e-6);
+  EXPECT_LT(degrees(Eigen::AngleAxisd(replaced.R_from_this.transpose() * T_true.linear()).angle()), 1.0);  // pulled by the wrong mount
+  const MeasuredMotion kept = measureWith(0.0).first;  // no check: the corners' own direction
+  ASSERT_EQ(kept.from_id, 7);
+  EXPECT_LT(directionOffDeg(kept.direction, T_true.translation()), 1.0);
+  EXPECT_GT(directionOffDeg(kept.direction, forward.chord(kept.R_from_this)), 3.0);
 }
 
 TEST(KeyframeMotion, ReanchorsOnlyAKeyframeFarOffItsMeasuredMotionButNotImplausiblyFar) {
