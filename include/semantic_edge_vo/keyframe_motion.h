@@ -23,12 +23,14 @@ struct KeyframeMotionOptions {
   /// baseline is too short for a direction (a turn alone moves the corners too).
   double min_parallax = 3.0;
   /// Sideways angle, deg, beyond which a measured direction of travel is off the chord a car travels
-  /// along for the measured rotation (forward_motion.chord). Seen on curves, from corners on traffic
-  /// and from distant corners, whose essential matrix trades a yaw error for sideways travel
-  /// (bas-relief ambiguity). Such a measurement, or none (too few corners agree), is replaced by the
-  /// vehicle's motion (estimateVehicleMotion: the rotation alone, travel on the chord). Only sideways:
-  /// a camera's mount pitch is rarely known to a degree (KITTI's travels about 1 deg above its axis).
-  /// 0, or forward_motion off: neither the check nor the replacement.
+  /// along for the measured rotation (forward_motion.chord, forward or reversed). Seen on curves, from
+  /// corners on traffic and from distant corners, whose essential matrix trades a yaw error for
+  /// sideways travel (bas-relief ambiguity). Such a measurement, or none (too few corners agree, or
+  /// too little parallax), is replaced by the vehicle's motion (estimateVehicleMotion: the rotation
+  /// alone, travel on the chord), which the window's measured-motion priors then hold as firmly as
+  /// any measurement. Only sideways: a camera's mount pitch is rarely known to a degree (KITTI's
+  /// travels about 1 deg above its axis). 0, or forward_motion off: neither the check nor the
+  /// replacement.
   double max_chord_deviation_deg = 2.0;
   /// The vehicle's axis of travel (the loader sets the tracker's).
   ForwardMotionOptions forward_motion;
@@ -59,7 +61,8 @@ class KeyframeMotion {
   void follow(int frame_index, const cv::Mat& gray);
   /// The motion from the keyframe the corners started at to frame `frame_index`, which they must
   /// have been followed into last; not measured (from_id -1) otherwise, or with too few agreeing
-  /// corners or too little parallax. `R_from_this_guess` (the frame's orientation in the keyframe,
+  /// corners or too little parallax, and on a car when off its chord with no vehicle motion found
+  /// either (max_chord_deviation_deg). `R_from_this_guess` (the frame's orientation in the keyframe,
   /// as tracked) starts the vehicle-motion fit.
   MeasuredMotion measure(int frame_index, const Eigen::Matrix3d& R_from_this_guess) const;
 

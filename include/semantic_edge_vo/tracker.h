@@ -24,7 +24,7 @@ struct TrackerOptions {
   double accept_inlier_ratio = 0.85;
   double min_inlier_ratio = 0.5;     ///< lost when fewer photometric residuals are inliers at level 0
   double min_points_in_view = 0.25;  ///< lost when fewer keyframe points project into the frame
-  ForwardMotionOptions forward_motion;  ///< prior on the direction of travel (off by default)
+  ForwardMotionOptions forward_motion;  ///< prior on the direction of travel (sigma 0: off)
 
   std::string validate() const;
 };

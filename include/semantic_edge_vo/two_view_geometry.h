@@ -25,10 +25,12 @@ bool estimateTwoViewMotion(const std::vector<cv::Point2f>& first, const std::vec
                            const PinholeCamera& camera, double threshold, int min_inliers, TwoViewMotion* motion);
 
 /// The motion of a camera on a vehicle, which travels along `forward.chord` of its rotation (no side
-/// slip): only the rotation is fitted, to the Sampson errors of all correspondences (Huber at
-/// `threshold` px, Gauss-Newton from `R_second_first_guess`). Parallel traffic moves along the same
-/// direction and fits it too; distant corners cannot trade a yaw error for sideways travel.
-/// False when fewer than `min_inliers` correspondences lie within `threshold` px.
+/// slip), forward or in reverse: only the rotation is fitted, to the Sampson errors of all
+/// correspondences (Huber at `threshold` px, Gauss-Newton from `R_second_first_guess`, steps kept
+/// while they lower the cost), then the sign of the travel that puts more agreeing correspondences
+/// in front of both views. Parallel traffic moves along the same direction and fits it too; distant
+/// corners cannot trade a yaw error for sideways travel. Inliers: within `threshold` px (in front of
+/// both views or not: a distant corner's depth sign is noise). False when fewer than `min_inliers`.
 bool estimateVehicleMotion(const std::vector<cv::Point2f>& first, const std::vector<cv::Point2f>& second,
                            const PinholeCamera& camera, const ForwardMotionOptions& forward, double threshold, int min_inliers,
                            const Eigen::Matrix3d& R_second_first_guess, TwoViewMotion* motion);

@@ -25,11 +25,14 @@ double medianParallax(const std::vector<cv::Point2f>& first, const std::vector<c
   return parallax.empty() ? 0.0 : median(parallax);
 }
 
-/// Sideways angle (about the optical y axis) from the vehicle's chord to the measured direction of travel, rad.
+/// Sideways angle (about the optical y axis) from the vehicle's chord, forward or reversed, to the
+/// measured direction of travel, rad.
 double lateralDeviation(const TwoViewMotion& motion, const ForwardMotionOptions& forward) {
   const Eigen::Matrix3d R_first_second = motion.R_second_first.transpose();
-  const Eigen::Vector3d direction = -(R_first_second * motion.t_second_first), chord = forward.chord(R_first_second);
-  return std::atan2(direction.x(), direction.z()) - std::atan2(chord.x(), chord.z());
+  const Eigen::Vector3d direction = -(R_first_second * motion.t_second_first);
+  Eigen::Vector3d chord = forward.chord(R_first_second);
+  if (chord.dot(direction) < 0.0) chord = -chord;  // reversing
+  return std::remainder(std::atan2(direction.x(), direction.z()) - std::atan2(chord.x(), chord.z()), 2.0 * M_PI);
 }
 
 }  // namespace
@@ -74,8 +77,8 @@ MeasuredMotion KeyframeMotion::measure(int frame_index, const Eigen::Matrix3d& R
   bool found = estimateTwoViewMotion(first, current, camera_, options_.ransac_threshold, options_.min_inliers, &motion) &&
                medianParallax(first, current, motion, camera_) >= options_.min_parallax;
   if (found && vehicle) found = std::abs(lateralDeviation(motion, options_.forward_motion)) <= radians(options_.max_chord_deviation_deg);
-  // Off the chord, or not measured at all (too few corners agree with five free dimensions): the
-  // rotation alone, with the travel the vehicle allows.
+  // Off the chord, or not measured at all (too few corners agree with five free dimensions, or too
+  // little parallax for them): the rotation alone, with the travel the vehicle allows.
   if (!found && vehicle)
     found = estimateVehicleMotion(first, current, camera_, options_.forward_motion, options_.ransac_threshold, options_.min_inliers,
                                   R_from_this_guess.transpose(), &motion) &&

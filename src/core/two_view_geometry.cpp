@@ -3,6 +3,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 
+#include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/se3.h"
 
 namespace semantic_edge_vo {
@@ -25,8 +26,8 @@ bool estimateTwoViewMotion(const std::vector<cv::Point2f>& first, const std::vec
 
 namespace {
 
-/// Unit translation of the vehicle motion with rotation R_second_first: the second centre lies along
-/// the chord in the first view, so t = -R c.
+/// Unit translation of the vehicle motion with rotation R_second_first, driving forward: the second
+/// centre lies along the chord in the first view, so t = -R c (reversing: the opposite).
 Eigen::Vector3d vehicleTranslation(const Eigen::Matrix3d& R_second_first, const ForwardMotionOptions& forward) {
   return -(R_second_first * forward.chord(R_second_first.transpose()));
 }
@@ -36,6 +37,14 @@ double sampson(const Eigen::Matrix3d& E, const Eigen::Vector3d& x1, const Eigen:
   const Eigen::Vector3d Ex1 = E * x1, Etx2 = E.transpose() * x2;
   const double norm = std::sqrt(Ex1.head<2>().squaredNorm() + Etx2.head<2>().squaredNorm());
   return norm > 0.0 ? f * x2.dot(Ex1) / norm : 0.0;
+}
+
+/// Is the point seen along x1 and x2 (x2 d2 = R x1 d1 + t, least squares) in front of both views?
+bool inFront(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const Eigen::Vector3d& x1, const Eigen::Vector3d& x2) {
+  Eigen::Matrix<double, 3, 2> A;
+  A << R * x1, -x2;
+  const Eigen::Vector2d depths = (A.transpose() * A).ldlt().solve(-A.transpose() * t);
+  return depths.allFinite() && depths[0] > 0.0 && depths[1] > 0.0;
 }
 
 }  // namespace
@@ -51,8 +60,15 @@ bool estimateVehicleMotion(const std::vector<cv::Point2f>& first, const std::vec
     x2[i] = camera.backProject(second[i].x, second[i].y, 1.0);
   }
   const double f = camera.fx;
+  // Sampson distances do not change with the sign of t: the fit holds for forward and reverse travel alike.
   const auto essential = [&](const Eigen::Matrix3d& R) -> Eigen::Matrix3d { return skew(vehicleTranslation(R, forward)) * R; };
+  const auto cost = [&](const Eigen::Matrix3d& E) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < n; ++i) sum += huberCost(sampson(E, x1[i], x2[i], f), threshold);
+    return sum;
+  };
   Eigen::Matrix3d R = R_second_first_guess;
+  double current_cost = cost(essential(R));
   // Three parameters and a few hundred correspondences: central differences of a left rotation
   // perturbation (through the chord's half turn) cost less than a millisecond.
   constexpr double kStep = 1e-6;  // rad
@@ -77,19 +93,30 @@ bool estimateVehicleMotion(const std::vector<cv::Point2f>& first, const std::vec
     }
     const Eigen::Vector3d step = -H.ldlt().solve(b);
     if (!step.allFinite()) return false;
-    R = so3Exp(step) * R;
+    const Eigen::Matrix3d candidate = so3Exp(step) * R;
+    const double candidate_cost = cost(essential(candidate));
+    if (!(candidate_cost < current_cost)) break;  // converged, or a step that would not help
+    R = candidate;
+    current_cost = candidate_cost;
     if (step.norm() < 1e-9) break;
   }
+  // Forward or reverse: the sign that puts more of the agreeing correspondences in front of both
+  // views. They stay inliers either way: a distant corner's depth sign is noise, and traffic faster
+  // than the car lies "behind" while agreeing with the direction.
   const Eigen::Matrix3d E = essential(R);
-  motion->R_second_first = R;
-  motion->t_second_first = vehicleTranslation(R, forward);
+  const Eigen::Vector3d t = vehicleTranslation(R, forward);
   motion->inliers.assign(n, 0);
   motion->inlier_count = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (std::abs(sampson(E, x1[i], x2[i], f)) <= threshold) {
-      motion->inliers[i] = 1;
-      ++motion->inlier_count;
-    }
+  int ahead = 0, behind = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (std::abs(sampson(E, x1[i], x2[i], f)) > threshold) continue;
+    motion->inliers[i] = 1;
+    ++motion->inlier_count;
+    if (inFront(R, t, x1[i], x2[i])) ++ahead;
+    else if (inFront(R, -t, x1[i], x2[i])) ++behind;
+  }
+  motion->R_second_first = R;
+  motion->t_second_first = behind > ahead ? Eigen::Vector3d(-t) : t;
   return motion->inlier_count >= min_inliers;
 }
 

@@ -79,7 +79,7 @@ TEST(TwoViewMotion, VehicleMotionHoldsOnDistantCornersAndParallelTraffic) {
     if (q.z() <= 0.0 || !camera.contains(b.x(), b.y())) continue;
     if (kind == Kind::kOutlier) {
       const Eigen::Vector2d along = (b - camera.project(R * travel)).normalized();
-      b += 6.0 * Eigen::Vector2d(-along.y(), along.x());
+      b += (first.size() % 20 == 0 ? 6.0 : -6.0) * Eigen::Vector2d(-along.y(), along.x());  // both sides
     }
     first.emplace_back(static_cast<float>(a.x()), static_cast<float>(a.y()));
     second.emplace_back(static_cast<float>(b.x() + noise(random)), static_cast<float>(b.y() + noise(random)));
@@ -100,6 +100,12 @@ TEST(TwoViewMotion, VehicleMotionHoldsOnDistantCornersAndParallelTraffic) {
   EXPECT_EQ(outliers_kept, 0);
   EXPECT_GE(traffic_kept, traffic * 8 / 10);  // noise puts a few beyond 0.5 px
   EXPECT_FALSE(estimateVehicleMotion(first, second, camera, forward, 0.5, 295, Eigen::Matrix3d::Identity(), &motion));
+
+  // The same views the other way round: the second camera turned back and reversing along the chord.
+  ASSERT_TRUE(estimateVehicleMotion(second, first, camera, forward, 0.5, 50, Eigen::Matrix3d::Identity(), &motion));
+  EXPECT_LT(degrees(Eigen::AngleAxisd(motion.R_second_first * R).angle()), 0.02);
+  const Eigen::Vector3d back_centre = -motion.R_second_first.transpose() * motion.t_second_first;  // first centre, seen from the second
+  EXPECT_LT(degrees(std::acos(std::min(1.0, back_centre.dot((R * -travel).normalized())))), 0.02);
 }
 
 TEST(CornerTracks, FollowsAShiftedImageAndStartsAtCorners) {
@@ -168,28 +174,41 @@ TEST(KeyframeMotion, MeasuresTheTrueMotionBetweenSyntheticKeyframes) {
   EXPECT_LT(directionOffDeg(from_next.direction, (last.T_world_cam.inverse() * next.T_world_cam).translation()), 1.0);
 }
 
-TEST(KeyframeMotion, ReplacesAMeasurementOffTheVehicleChord) {
-  // The same drive, but the options claim a mount whose travel is 5 degrees right of the optical
-  // axis: the true, straight-ahead measurement is off that chord and the vehicle motion replaces it.
+TEST(KeyframeMotion, OnABendAMeasurementOffTheChordIsReplacedByTheVehicleFit) {
+  // A city corner: about 4.5 degrees of yaw from keyframe frame 60 to frame 63.
   synthetic::SyntheticSequence sequence(synthetic::SyntheticSequenceOptions::forScene(synthetic::SceneType::kCity, 3));
-  const auto measureWith = [&](double max_chord_deviation_deg) {
+  const Eigen::Isometry3d T_true = sequence.frame(60).T_world_cam.inverse() * sequence.frame(63).T_world_cam;
+  ASSERT_GT(degrees(Eigen::AngleAxisd(T_true.linear()).angle()), 3.0);
+  // The tracked rotation, 1 degree of yaw off, starts the fit.
+  const Eigen::Matrix3d guess = T_true.linear() * Eigen::AngleAxisd(radiansOf(1.0), Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const auto measureWith = [&](double max_chord_deviation_deg, double mount_yaw_deg) {
     KeyframeMotionOptions options;
-    options.forward_motion.yaw_deg = 5.0;
     options.max_chord_deviation_deg = max_chord_deviation_deg;
+    options.forward_motion.yaw_deg = mount_yaw_deg;
     KeyframeMotion motion(options, sequence.camera());
-    motion.start(7, 10, sequence.frame(10).gray);
-    for (int i = 11; i <= 16; ++i) motion.follow(i, sequence.frame(i).gray);
-    return std::make_pair(motion.measure(16, Eigen::Matrix3d::Identity()), options.forward_motion);
+    motion.start(7, 60, sequence.frame(60).gray);
+    for (int i = 61; i <= 63; ++i) motion.follow(i, sequence.frame(i).gray);
+    return std::make_pair(motion.measure(63, guess), options.forward_motion);
   };
-  const Eigen::Isometry3d T_true = sequence.frame(10).T_world_cam.inverse() * sequence.frame(16).T_world_cam;
-  const auto [replaced, forward] = measureWith(2.0);
+  const auto rotationOffDeg = [&](const MeasuredMotion& m) { return degrees(Eigen::AngleAxisd(m.R_from_this.transpose() * T_true.linear()).angle()); };
+
+  // Any sideways deviation at all is too much: the fit replaces the corners' own measurement.
+  const auto [fitted, forward] = measureWith(1e-6, 0.0);
+  ASSERT_EQ(fitted.from_id, 7);
+  EXPECT_LT(directionOffDeg(fitted.direction, forward.chord(fitted.R_from_this)), 1e-6);  // on its chord, forward
+  EXPECT_LT(rotationOffDeg(fitted), 0.1);                                                 // from 1 degree off
+  EXPECT_LT(directionOffDeg(fitted.direction, T_true.translation()), 0.5);
+
+  // Options that claim a mount travelling 5 degrees right of the optical axis: the true measurement is
+  // off that chord and replaced; with the check off it is kept.
+  const auto [replaced, claimed] = measureWith(2.0, 5.0);
   ASSERT_EQ(replaced.from_id, 7);
-  EXPECT_LT(directionOffDeg(replaced.direction, forward.chord(replaced.R_from_this)), 1e-6);
-  EXPECT_LT(degrees(Eigen::AngleAxisd(replaced.R_from_this.transpose() * T_true.linear()).angle()), 1.0);  // pulled by the wrong mount
-  const MeasuredMotion kept = measureWith(0.0).first;  // no check: the corners' own direction
+  EXPECT_LT(directionOffDeg(replaced.direction, claimed.chord(replaced.R_from_this)), 1e-6);
+  EXPECT_GT(directionOffDeg(replaced.direction, T_true.translation()), 3.0);
+  const MeasuredMotion kept = measureWith(0.0, 5.0).first;
   ASSERT_EQ(kept.from_id, 7);
+  EXPECT_LT(rotationOffDeg(kept), 0.1);
   EXPECT_LT(directionOffDeg(kept.direction, T_true.translation()), 1.0);
-  EXPECT_GT(directionOffDeg(kept.direction, forward.chord(kept.R_from_this)), 3.0);
 }
 
 TEST(KeyframeMotion, ReanchorsOnlyAKeyframeFarOffItsMeasuredMotionButNotImplausiblyFar) {
