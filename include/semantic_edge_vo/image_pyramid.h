@@ -35,8 +35,9 @@ class ImagePyramid {
 inline float sampleBilinear(const cv::Mat& image, float x, float y) {
   const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
   const float ax = x - static_cast<float>(x0), ay = y - static_cast<float>(y0);
+  // ptr() of both rows: cv::Mat::step1() is not inlined, and this runs millions of times a frame.
   const float* row0 = image.ptr<float>(y0);
-  const float* row1 = row0 + image.step1();
+  const float* row1 = image.ptr<float>(y0 + 1);
   return (1.0f - ay) * ((1.0f - ax) * row0[x0] + ax * row0[x0 + 1]) + ay * ((1.0f - ax) * row1[x0] + ax * row1[x0 + 1]);
 }
 

@@ -11,6 +11,13 @@ namespace {
 // A query anywhere within a pixel is at most half its diagonal from the pixel's centre.
 constexpr float kHalfDiagonal = 0.70711f;
 
+/// std::lround of a pixel coordinate (half away from zero), inline: libm's lroundf cost 1 % of a run.
+int roundToPixel(float x) {
+  const int whole = static_cast<int>(x);                  // toward zero
+  const float fraction = x - static_cast<float>(whole);  // exact
+  return whole + (fraction >= 0.5f) - (fraction <= -0.5f);
+}
+
 }  // namespace
 
 SharedClassEdgeTest::SharedClassEdgeTest(const NearestNeighborFieldView& field, double radius)
@@ -38,7 +45,7 @@ SharedClassEdgeTest::SharedClassEdgeTest(const NearestNeighborFieldView& field, 
            e < starts[static_cast<std::size_t>(grid_end) * level.grid_cols]; ++e) {
         const std::uint32_t s = level.entry_seed[e];
         const float u = level.seed_u[s], v = level.seed_v[s];
-        const int cx = static_cast<int>(std::lround(u)), cy = static_cast<int>(std::lround(v));
+        const int cx = roundToPixel(u), cy = roundToPixel(v);
         for (int y = std::max(row_begin, cy - span); y <= std::min(row_end - 1, cy + span); ++y)
           for (int x = std::max(0, cx - span); x <= std::min(width_ - 1, cx + span); ++x)
             if ((x - u) * (x - u) + (y - v) * (y - v) <= reach * reach) near_layers_[static_cast<std::size_t>(y) * width_ + x] |= bit;
@@ -49,7 +56,7 @@ SharedClassEdgeTest::SharedClassEdgeTest(const NearestNeighborFieldView& field, 
 
 bool SharedClassEdgeTest::operator()(std::uint32_t class_mask, float x, float y) const {
   const bool semantic = classRestricted();
-  const int px = static_cast<int>(std::lround(x)), py = static_cast<int>(std::lround(y));
+  const int px = roundToPixel(x), py = roundToPixel(y);
   if (px >= 0 && py >= 0 && px < width_ && py < height_ && field_.num_layers <= 32) {
     const std::uint32_t near = near_layers_[static_cast<std::size_t>(py) * width_ + px];
     if (!(semantic ? near & class_mask : near)) return false;  // no seed of a wanted layer that close
