@@ -11,6 +11,12 @@ inline double huberCost(double r, double k) {
   return a <= k ? 0.5 * r * r : k * (a - 0.5 * k);
 }
 
+/// Iteratively reweighted least-squares weight of a residual r under the Huber cost with threshold k.
+inline double huberWeight(double r, double k) {
+  const double a = std::abs(r);
+  return a <= k ? 1.0 : k / a;
+}
+
 /// Median (the upper one for an even count) of the values, 0 for none. Takes a copy to reorder.
 inline double median(std::vector<double> values) {
   if (values.empty()) return 0.0;

@@ -60,8 +60,7 @@ bool EdgeRegistration::residualFor(const ReferenceEdge& edge, const Eigen::Vecto
   Eigen::Matrix<double, 3, 6> d_point_d_twist;  // left perturbation: exp(xi) * p = p + v + w x p
   d_point_d_twist << Eigen::Matrix3d::Identity(), -skew(p_target);
   residual.jacobian = normal.transpose() * d_pixel_d_point * d_point_d_twist;
-  const double a = std::abs(residual.value);
-  residual.weight = edge.weight * (a <= options_.huber_threshold ? 1.0 : options_.huber_threshold / a);
+  residual.weight = edge.weight * huberWeight(residual.value, options_.huber_threshold);
   out->push_back(residual);
   return true;
 }

@@ -139,7 +139,7 @@ void Tracker::addPhotometric(int level, const Eigen::Isometry3d& T_cam_kf, const
         sums->inlier_squares += r * r;
       }
       if (!with_normal) continue;
-      const double w = (a <= k ? 1.0 : k / a) * inv_var;
+      const double w = huberWeight(r, k) * inv_var;
       const Eigen::Vector3d P = projected[j].cast<double>();
       const double gx = sampleBilinear(target.gradient_dx, x, y) * fx, gy = sampleBilinear(target.gradient_dy, x, y) * fy;
       const Eigen::Vector3d d_point(gx / P.z(), gy / P.z(), -(gx * P.x() + gy * P.y()) / (P.z() * P.z()));

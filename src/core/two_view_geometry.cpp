@@ -87,7 +87,7 @@ bool estimateVehicleMotion(const std::vector<cv::Point2f>& first, const std::vec
       const double r = sampson(E, x1[i], x2[i], f);
       Eigen::Vector3d J;
       for (int k = 0; k < 3; ++k) J[k] = (sampson(E_plus[k], x1[i], x2[i], f) - sampson(E_minus[k], x1[i], x2[i], f)) / (2 * kStep);
-      const double weight = std::abs(r) <= threshold ? 1.0 : threshold / std::abs(r);  // Huber
+      const double weight = huberWeight(r, threshold);
       H += weight * J * J.transpose();
       b += weight * r * J;
     }
