@@ -26,6 +26,7 @@
 #include "semantic_edge_vo/ros/message_tracer.h"
 #include "semantic_edge_vo/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
+#include "semantic_edge_vo/ros/stamp_order.h"
 
 namespace semantic_edge_vo {
 namespace enc = sensor_msgs::image_encodings;
@@ -44,6 +45,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     double class_wait = 0.5;
     int max_pending = 10;
     loader.load("transport", &transport, "(raw | compressed)");
+    loader.load("time_jump_back", &time_jump_back_, "s");
     std::string error = loadSemanticEdgeOptions(&loader, &options_);
     if (error.empty() && options_.mode != IntakeMode::kCanny) {
       loader.load("class_format", &class_format, "(probabilities | labels | bitmask)");
@@ -61,6 +63,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     NODELET_INFO_STREAM("parameters:" << loader.summary() << "\n  classes = " << classes_.size());
     if (error.empty()) error = parameters.error();
     if (error.empty() && queue_size < 1) error = "queue_size must be >= 1";
+    if (error.empty() && !(time_jump_back_ > 0.0)) error = "time_jump_back must be > 0 s";
     if (error.empty() && transport != "raw" && transport != "compressed")
       error = "transport must be raw or compressed (got '" + transport + "')";
     if (error.empty() && !parseClassEvidenceForm(class_format, &class_form_))
@@ -75,6 +78,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
       return;
     }
     fallback_to_canny_ = on_missing == "canny";
+    stamp_order_ = StampOrder(time_jump_back_);
     const bool need_edges = options_.mode == IntakeMode::kFused && edge_source == "topic";
     pairing_ = std::make_unique<FramePairing>(need_edges, class_wait, static_cast<std::size_t>(max_pending));
     tracer_.init(node, private_node, getName());
@@ -127,12 +131,6 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
       *detail = "camera_info K: " + camera_error;
       return "invalid_camera_info";
     }
-    if (!last_stamp_.isZero() && image.header.stamp <= last_stamp_) {
-      std::ostringstream text;
-      text << "stamp " << image.header.stamp << " is not after the previous frame's " << last_stamp_;
-      *detail = text.str();
-      return "stamp_not_increasing";
-    }
     return {};
   }
 
@@ -156,7 +154,26 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
       rejections_->reject("image", reason, detail);
       return;
     }
-    last_stamp_ = image->header.stamp;
+    const ros::Time previous = stamp_order_.last();
+    switch (stamp_order_.accept(image->header.stamp)) {
+      case StampOrder::Verdict::kNext: break;
+      case StampOrder::Verdict::kNotIncreasing: {
+        std::ostringstream text;
+        text << "stamp " << image->header.stamp << " is not after the previous frame's " << previous << " (nor more than "
+             << time_jump_back_ << " s before it, which would start the graph over)";
+        rejections_->reject("image", "stamp_not_increasing", text.str());
+        return;
+      }
+      case StampOrder::Verdict::kRestart: {
+        // Frames still waiting for their class maps belong to the old pass: after the new one's they
+        // would go out of stamp order.
+        const std::size_t dropped = pairing_->clear();
+        NODELET_WARN_STREAM("the input's stamps jumped back by " << (previous - image->header.stamp).toSec() << " s (from "
+                            << previous << " to " << image->header.stamp << "; a bag played again?): the graph starts over"
+                            << (dropped ? " (" + std::to_string(dropped) + " frames waiting for class maps dropped)" : ""));
+        break;
+      }
+    }
     if (options_.mode == IntakeMode::kCanny) {
       process(FramePairing::Frame{image, info, nullptr, nullptr, true});
       return;
@@ -291,7 +308,8 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
   ros::WallTimer expiry_timer_;
   std::mutex mutex_;  // guards everything below and serializes all callbacks (frames leave in stamp order)
   std::unique_ptr<FramePairing> pairing_;
-  ros::Time last_stamp_;  // stamp of the last accepted image
+  double time_jump_back_ = 1.0;  // s
+  StampOrder stamp_order_{time_jump_back_};  // of the accepted images
 };
 
 }  // namespace semantic_edge_vo

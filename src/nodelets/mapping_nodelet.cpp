@@ -22,6 +22,7 @@
 #include "semantic_edge_vo/ros/message_tracer.h"
 #include "semantic_edge_vo/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
+#include "semantic_edge_vo/ros/stamp_order.h"
 
 namespace semantic_edge_vo {
 
@@ -115,6 +116,10 @@ class MappingNodelet : public nodelet::Nodelet {
   }
 
   void extendPath(const TrackedFrame& tracked) {
+    if (path_order_.accept(tracked.header.stamp) == StampOrder::Verdict::kRestart) {
+      NODELET_WARN_STREAM("the tracked frames' stamps jumped back: the path starts over");
+      path_.poses.clear();
+    }
     camera_frame_ = tracked.camera_frame_id;
     const Eigen::Isometry3d T_base_cam = extrinsic_->baseFromCamera(camera_frame_);
     geometry_msgs::PoseStamped pose;
@@ -150,6 +155,12 @@ class MappingNodelet : public nodelet::Nodelet {
 
   /// Commits keyframes that left the window to the voxel map, then publishes voxels + window.
   void updateMap(const KeyframeMap& map) {
+    if (map_order_.accept(map.header.stamp) == StampOrder::Verdict::kRestart) {
+      NODELET_WARN_STREAM("the keyframe maps' stamps jumped back: the semantic edge map starts over");
+      voxels_.clear();
+      voxel_order_.clear();
+      last_window_.clear();
+    }
     const Eigen::Isometry3d T_base_cam = extrinsic_->baseFromCamera(camera_frame_);
     const PinholeCamera camera = cameraFromInfo(map.camera_info);
     std::set<std::uint32_t> in_window;
@@ -229,6 +240,9 @@ class MappingNodelet : public nodelet::Nodelet {
   std::thread worker_;
 
   // Worker thread only.
+  // Stamps going back mean the odometry started over (its input was played again): so do the path
+  // and the map, each on its own topic's stamps (the two topics interleave in any order).
+  StampOrder path_order_{0.0}, map_order_{0.0};
   std::string camera_frame_;  ///< of the latest tracked frame
   nav_msgs::Path path_;
   std::vector<MapKeyframe> last_window_;

@@ -23,6 +23,7 @@
 #include "semantic_edge_vo/ros/message_tracer.h"
 #include "semantic_edge_vo/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
+#include "semantic_edge_vo/ros/stamp_order.h"
 
 namespace semantic_edge_vo {
 
@@ -78,9 +79,20 @@ class TrackingNodelet : public nodelet::Nodelet {
       rejections_->reject("frame", "invalid_field", error);
       return;
     }
+    const ros::Time previous = stamp_order_.last();
+    const StampOrder::Verdict order = stamp_order_.accept(frame->header.stamp);
+    if (order == StampOrder::Verdict::kNotIncreasing) {
+      rejections_->reject("frame", "stamp_not_increasing", "the frame's stamp is not after the previous frame's");
+      return;
+    }
     const PinholeCamera camera = cameraFromInfo(frame->camera_info);
-    if (!odometry_ || camera.width != camera_.width || camera.height != camera_.height) {
-      if (odometry_) NODELET_WARN_STREAM("the image size changed: the odometry starts over");
+    const bool restart = order == StampOrder::Verdict::kRestart;
+    if (!odometry_ || restart || camera.width != camera_.width || camera.height != camera_.height) {
+      if (restart)
+        NODELET_WARN_STREAM("the frames' stamps jumped back (from " << previous << " to " << frame->header.stamp
+                                                                    << "): the odometry starts over, odom at the new first frame");
+      else if (odometry_)
+        NODELET_WARN_STREAM("the image size changed: the odometry starts over");
       camera_ = camera;
       odometry_ = std::make_unique<Odometry>(options_, camera_);
       stamps_.clear();
@@ -238,6 +250,7 @@ class TrackingNodelet : public nodelet::Nodelet {
   // Frame callback only (the synchronizer calls it serially).
   PinholeCamera camera_;
   std::unique_ptr<Odometry> odometry_;
+  StampOrder stamp_order_{0.0};  ///< the intake passes frames in order: any step back is a new pass
   std::map<int, std_msgs::Header> stamps_;  ///< headers of recent frames by odometry index (late poses)
   int frame_count_ = 0;
   std::vector<std::string> class_names_;  ///< of the latest frame (the intake's class table)

@@ -55,4 +55,11 @@ std::vector<FramePairing::Frame> FramePairing::release(const ros::WallTime& now)
   return ready;
 }
 
+std::size_t FramePairing::clear() {
+  std::size_t images = 0;
+  for (const auto& stamped : entries_) images += stamped.second.frame.image ? 1 : 0;
+  entries_.clear();
+  return images;
+}
+
 }  // namespace semantic_edge_vo

@@ -1,5 +1,6 @@
 // rostest: each kind of bad input is refused with a named error on /rosout, and the good frames
-// that follow still flow through every stage to tracking.
+// that follow still flow through every stage to tracking. A stream whose stamps start over far
+// earlier (a bag played again) is not refused: the graph starts over.
 #include <functional>
 #include <mutex>
 #include <set>
@@ -51,6 +52,7 @@ class BadInput : public ::testing::Test {
     log_subscriber_ = node_.subscribe<rosgraph_msgs::Log>("/rosout", 100, [this](const rosgraph_msgs::LogConstPtr& log) {
       std::lock_guard<std::mutex> lock(mutex_);
       if (log->level >= rosgraph_msgs::Log::ERROR) errors_.push_back(log->msg);
+      else if (log->level == rosgraph_msgs::Log::WARN) warnings_.push_back(log->file + ": " + log->msg);
     });
     // Every processed frame gets a status (a 2D test pattern never initialises a monocular odometry,
     // so there is no pose to wait for).
@@ -66,7 +68,7 @@ class BadInput : public ::testing::Test {
       ros::WallDuration(0.1).sleep();
     ASSERT_GT(image_publisher_.getNumSubscribers(), 0u) << "EdgeIntake never subscribed";
     ros::WallDuration(1.0).sleep();
-    stamp_ = ros::Time::now();
+    if (stamp_.isZero()) stamp_ = ros::Time::now();  // the graph lives on from test to test: stamps too
   }
 
   void publish(const Frame& frame) {
@@ -105,16 +107,33 @@ class BadInput : public ::testing::Test {
     return false;
   }
 
+  /// Waits for a warning logged from a source file whose name contains `source` (the nodelets share
+  /// one manager node) with text containing `text`.
+  bool warningLogged(const std::string& source, const std::string& text) {
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(5.0);
+    while (ros::WallTime::now() < deadline) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        for (const std::string& message : warnings_)
+          if (message.find(source) != std::string::npos && message.find(text) != std::string::npos) return true;
+      }
+      ros::WallDuration(0.05).sleep();
+    }
+    return false;
+  }
+
   ros::NodeHandle node_;
   ros::AsyncSpinner spinner_{2};
   ros::Publisher image_publisher_, info_publisher_;
   ros::Subscriber log_subscriber_, status_subscriber_;
   std::mutex mutex_;
-  std::vector<std::string> errors_;
+  std::vector<std::string> errors_, warnings_;  ///< warnings as "source file: text"
   std::set<ros::Time> status_stamps_;
-  ros::Time stamp_;
+  static ros::Time stamp_;
   int index_ = 0;
 };
+
+ros::Time BadInput::stamp_;
 
 TEST_F(BadInput, EachIsRefusedByNameAndGoodFramesStillFlow) {
   ASSERT_TRUE(goodFrameFlows()) << "a good frame must flow before the bad ones";
@@ -146,6 +165,16 @@ TEST_F(BadInput, EachIsRefusedByNameAndGoodFramesStillFlow) {
   publish(goodFrame(stamp_ - ros::Duration(0.05), ++index_));
   EXPECT_TRUE(errorLogged("stamp_not_increasing"));
   EXPECT_TRUE(goodFrameFlows()) << "good frames stopped flowing after a backwards stamp";
+}
+
+TEST_F(BadInput, AStreamThatStartsOverEarlierStartsTheGraphOver) {
+  ASSERT_TRUE(goodFrameFlows());
+  // A bag played again: its stamps start over, far before the last frame's.
+  stamp_ -= ros::Duration(30.0);
+  EXPECT_TRUE(goodFrameFlows()) << "the frames of a second pass must flow, not be refused as out of order";
+  EXPECT_TRUE(warningLogged("edge_intake_nodelet", "jumped back")) << "the intake must say that its input started over";
+  EXPECT_TRUE(warningLogged("tracking_nodelet", "the odometry starts over")) << "the tracking must start over";
+  EXPECT_TRUE(goodFrameFlows());
 }
 
 }  // namespace

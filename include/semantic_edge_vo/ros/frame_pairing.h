@@ -36,6 +36,9 @@ class FramePairing {
   /// Frames whose image waited longer than `wait`, released incomplete; expired lone maps are dropped.
   std::vector<Frame> expire(const ros::WallTime& now);
 
+  /// Drops every waiting input (its stream started over); returns how many images were waiting.
+  std::size_t clear();
+
   std::size_t pending() const { return entries_.size(); }
 
  private:

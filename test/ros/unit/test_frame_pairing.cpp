@@ -60,5 +60,21 @@ TEST(FramePairing, LateInputsExpireAndEdgeMapsAreAwaited) {
   EXPECT_EQ(ready[0].image->header.stamp, ros::Time(6.0));
 }
 
+TEST(FramePairing, ClearDropsWhatWaitsAndCountsTheImages) {
+  FramePairing pairing(false, 0.5, 10);
+  const ros::WallTime t0(100.0);
+  pairing.addImage(imageAt(1.0), kInfo, t0);
+  pairing.addImage(imageAt(2.0), kInfo, t0);
+  pairing.addClasses(imageAt(3.0), t0);  // a lone map: not an image
+  EXPECT_EQ(pairing.clear(), 2u);
+  EXPECT_EQ(pairing.pending(), 0u);
+  // An earlier stamp pairs afresh, without the dropped ones coming out after it.
+  pairing.addImage(imageAt(0.5), kInfo, t0);
+  const auto ready = pairing.addClasses(imageAt(0.5), t0);
+  ASSERT_EQ(ready.size(), 1u);
+  EXPECT_TRUE(ready[0].complete);
+  EXPECT_TRUE(pairing.expire(t0 + ros::WallDuration(1.0)).empty());
+}
+
 }  // namespace
 }  // namespace semantic_edge_vo
