@@ -128,7 +128,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     }
     const std::string camera_error = cameraFromInfo(info).validate();
     if (!camera_error.empty()) {
-      *detail = "camera_info K: " + camera_error;
+      *detail = "camera_info intrinsics (P, or K where P is unset): " + camera_error;
       return "invalid_camera_info";
     }
     return {};

@@ -18,11 +18,15 @@ sensor_msgs::CameraInfo cameraInfoOf(const PinholeCamera& camera, const std::str
 }
 
 PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info) {
+  // A rectified image's intrinsics are P's left 3x3 (sensor_msgs/CameraInfo): K is the raw camera's,
+  // and rectification (image_proc) moves the principal point and scales the focal length. Drivers
+  // that leave P unset (all zero) give K.
+  const bool has_projection = info.P[0] != 0.0 || info.P[5] != 0.0;
   PinholeCamera camera;
-  camera.fx = info.K[0];
-  camera.fy = info.K[4];
-  camera.cx = info.K[2];
-  camera.cy = info.K[5];
+  camera.fx = has_projection ? info.P[0] : info.K[0];
+  camera.fy = has_projection ? info.P[5] : info.K[4];
+  camera.cx = has_projection ? info.P[2] : info.K[2];
+  camera.cy = has_projection ? info.P[6] : info.K[5];
   camera.width = static_cast<int>(info.width);
   camera.height = static_cast<int>(info.height);
   return camera;

@@ -145,7 +145,10 @@ TEST_F(BadInput, EachIsRefusedByNameAndGoodFramesStillFlow) {
   const std::vector<Case> cases = {
       {"unsupported_encoding", [](Frame* f) { f->image.encoding = "32FC1"; }},
       {"size_mismatch", [](Frame* f) { f->info.width = kWidth / 2; }},
-      {"invalid_camera_info", [](Frame* f) { f->info.K.fill(0.0); }},
+      {"invalid_camera_info", [](Frame* f) {
+         f->info.K.fill(0.0);
+         f->info.P.fill(0.0);
+       }},
       {"empty_image", [](Frame* f) {
          f->image.width = f->image.height = f->image.step = 0;
          f->image.data.clear();

@@ -49,6 +49,15 @@ TEST(Conversions, CameraFromInfoAndPoseRoundTrip) {
   info.K.fill(0.0);
   EXPECT_NE(cameraFromInfo(info).validate(), "");
 
+  // A rectified image (image_proc): its intrinsics are P's, not the raw camera's K.
+  info.K = {700.0, 0, 620.0, 0, 702.0, 180.0, 0, 0, 1};
+  info.P = {690.0, 0, 615.5, 0, 0, 690.0, 183.25, 0, 0, 0, 1, 0};
+  const PinholeCamera rectified = cameraFromInfo(info);
+  EXPECT_DOUBLE_EQ(rectified.fx, 690.0);
+  EXPECT_DOUBLE_EQ(rectified.fy, 690.0);
+  EXPECT_DOUBLE_EQ(rectified.cx, 615.5);
+  EXPECT_DOUBLE_EQ(rectified.cy, 183.25);
+
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.rotate(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()));
   pose.translation() << 1, -2, 3;
