@@ -66,6 +66,10 @@ class Odometry {
   /// Processes the next frame (frames in order). Returns the poses that became final: normally this
   /// frame's; none while initialising; all the waiting frames' when initialisation succeeds.
   std::vector<FramePose> process(const std::shared_ptr<const OdometryFrame>& frame);
+  /// Forgets the map: the next frame starts a new initialisation, as after a loss (the new map
+  /// begins where the odometry predicts that frame, at the old map's scale: odom stays continuous).
+  /// Nothing to do while initialising.
+  void restart();
   /// Poses of frames still waiting for initialisation, as untrusted predictions (end of a sequence).
   std::vector<FramePose> flush();
 

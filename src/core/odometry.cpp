@@ -106,6 +106,12 @@ std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFra
   return {pose};
 }
 
+void Odometry::restart() {
+  if (state_ != OdometryState::kTracking) return;
+  state_ = OdometryState::kInitializing;
+  recovering_ = true;
+}
+
 std::vector<FramePose> Odometry::flush() {
   std::vector<FramePose> poses;
   for (const WaitingFrame& waiting : waiting_) {
@@ -256,8 +262,7 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
     // Lost: report the prediction, untrusted, and initialise again from the next frame.
     pose.T_world_cam = poses_seen_ >= 2 ? T_world_last_ * (T_world_before_.inverse() * T_world_last_) : T_world_last_;
     pose.state = OdometryState::kLost;
-    state_ = OdometryState::kInitializing;
-    recovering_ = true;
+    restart();
     remember(pose);
     return pose;
   }
