@@ -2,10 +2,13 @@
 // Odometry: initialisation, frame-to-keyframe tracking, depth filtering, keyframe decisions) ->
 // tf odom -> base_link and nav_msgs/Odometry for every trusted pose, TrackingStatus for every
 // frame, TrackedFrame and the KeyframeMap for the Mapping nodelet.
+#include <atomic>
+
 #include <message_filters/subscriber.h>
 #include <message_filters/time_synchronizer.h>
 #include <nav_msgs/Odometry.h>
 #include <nodelet/nodelet.h>
+#include <std_srvs/Trigger.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <tf2_eigen/tf2_eigen.h>
 #include <tf2_ros/static_transform_broadcaster.h>
@@ -64,6 +67,15 @@ class TrackingNodelet : public nodelet::Nodelet {
     field_subscriber_.subscribe(node, "nn_field", 20);
     sync_ = std::make_unique<Sync>(frame_subscriber_, field_subscriber_, 20);
     sync_->registerCallback(&TrackingNodelet::onFrame, this);
+    reset_service_ = getPrivateNodeHandle().advertiseService("reset", &TrackingNodelet::onReset, this);
+  }
+
+  bool onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+    restart_requested_ = true;  // served by the frame callback, which owns the odometry
+    response.success = true;
+    response.message = "the odometry initialises again from the next frame; odom continues where it is";
+    NODELET_INFO_STREAM("reset: " << response.message);
+    return true;
   }
 
   void onFrame(const SemanticEdgeFrameConstPtr& frame, const NearestNeighborFieldConstPtr& field) {
@@ -98,6 +110,7 @@ class TrackingNodelet : public nodelet::Nodelet {
       stamps_.clear();
       frame_count_ = 0;
     }
+    if (restart_requested_.exchange(false)) odometry_->restart();
     stamps_[frame_count_] = frame->header;
     class_names_ = frame->class_names;
     const auto odometry_frame =
@@ -246,6 +259,8 @@ class TrackingNodelet : public nodelet::Nodelet {
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   std::string announced_camera_frame_;
+  ros::ServiceServer reset_service_;
+  std::atomic<bool> restart_requested_{false};  ///< set by the reset service, taken by the frame callback
 
   // Frame callback only (the synchronizer calls it serially).
   PinholeCamera camera_;
