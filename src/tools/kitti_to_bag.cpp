@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "semantic_edge_vo/command_line.h"
 #include "semantic_edge_vo/progress_bar.h"
 #include "semantic_edge_vo/ros/kitti_bag_conversion.h"
 
@@ -33,29 +34,22 @@ const char* const kUsage = R"(usage: kitti_to_bag --sequence DIR --output BAG [o
 
 /// Empty on success, otherwise what is wrong with the command line.
 std::string parseArguments(int argc, char** argv, sevo::KittiBagOptions* options, bool* quiet) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--quiet") {
-      *quiet = true;
-      continue;
-    }
-    if (i + 1 >= argc) return flag + " needs a value";
-    const std::string value = argv[++i];
-    if (flag == "--sequence") options->sequence = value;
-    else if (flag == "--output") options->output = value;
-    else if (flag == "--poses") options->poses = value;
-    else if (flag == "--semantics-labels") options->class_labels = value;
-    else if (flag == "--semantics-bitmask") options->edge_bitmask = value;
-    else if (flag == "--camera") {
-      if (value != "0" && value != "2") return "--camera takes 0 or 2";
-      options->camera = std::stoi(value);
-    } else if (flag == "--start-time") {
-      char* end = nullptr;
-      options->start_time = std::strtod(value.c_str(), &end);
-      if (value.empty() || *end != '\0' || options->start_time <= 0.0) return "--start-time takes a positive time, s";
-    } else {
-      return "unknown argument '" + flag + "'";
-    }
+  std::string camera, start_time;
+  const std::string error =
+      sevo::parseFlags(argc, argv,
+                       {{"--sequence", &options->sequence}, {"--output", &options->output}, {"--poses", &options->poses},
+                        {"--semantics-labels", &options->class_labels}, {"--semantics-bitmask", &options->edge_bitmask},
+                        {"--camera", &camera}, {"--start-time", &start_time}},
+                       {{"--quiet", quiet}});
+  if (!error.empty()) return error;
+  if (!camera.empty()) {
+    if (camera != "0" && camera != "2") return "--camera takes 0 or 2";
+    options->camera = std::stoi(camera);
+  }
+  if (!start_time.empty()) {
+    char* end = nullptr;
+    options->start_time = std::strtod(start_time.c_str(), &end);
+    if (*end != '\0' || options->start_time <= 0.0) return "--start-time takes a positive time, s";
   }
   if (options->sequence.empty()) return "--sequence is required";
   if (options->output.empty()) return "--output is required";

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/command_line.h"
 #include "semantic_edge_vo/intake_options_loading.h"
 #include "semantic_edge_vo/keyframe_depth_report.h"
 #include "semantic_edge_vo/odometry.h"
@@ -24,28 +25,17 @@ namespace {
 
 struct Arguments {
   std::string sequence, output, field, intake, segmenter_model, config;  ///< field, intake: empty = config's
-  int frames = 0;
+  std::string frames;  ///< empty: all
   bool quiet = false;
 };
 
 std::string parse(int argc, char** argv, Arguments* args) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--quiet") {
-      args->quiet = true;
-      continue;
-    }
-    if (i + 1 >= argc) return flag + " needs a value";
-    const std::string value = argv[++i];
-    if (flag == "--sequence") args->sequence = value;
-    else if (flag == "--output") args->output = value;
-    else if (flag == "--field") args->field = value;
-    else if (flag == "--intake") args->intake = value;
-    else if (flag == "--segmenter-model") args->segmenter_model = value;
-    else if (flag == "--config") args->config = value;
-    else if (flag == "--frames") args->frames = std::atoi(value.c_str());
-    else return "unknown flag " + flag;
-  }
+  const std::string error = parseFlags(argc, argv,
+                                       {{"--sequence", &args->sequence}, {"--output", &args->output}, {"--field", &args->field},
+                                        {"--intake", &args->intake}, {"--segmenter-model", &args->segmenter_model},
+                                        {"--config", &args->config}, {"--frames", &args->frames}},
+                                       {{"--quiet", &args->quiet}});
+  if (!error.empty()) return error;
   if (args->sequence.empty() || args->output.empty()) return "--sequence DIR and --output OUT are required";
   return {};
 }
@@ -118,10 +108,7 @@ against them: OUT/keyframe_depths.txt and a summary line.
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
+  if (printUsageIfAsked(argc, argv, kUsage)) return 0;
   Arguments args;
   RunOptions options;
   std::string error = parse(argc, argv, &args);
@@ -139,7 +126,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::filesystem::create_directories(args.output);
-  const int frames = args.frames > 0 ? std::min<int>(args.frames, static_cast<int>(input.size())) : static_cast<int>(input.size());
+  const int frame_limit = std::atoi(args.frames.c_str());  // empty or 0: all
+  const int frames = frame_limit > 0 ? std::min<int>(frame_limit, static_cast<int>(input.size())) : static_cast<int>(input.size());
   const std::string field_name = frame_options.use_field ? toString(frame_options.field.kind) : "none";
   std::printf("run_sequence: %s, %d frames, %dx%d, intake %s, field %s, window optimisation %s%s%s\n", args.sequence.c_str(),
               frames, input.camera().width, input.camera().height, toString(frame_options.intake.mode),

@@ -1,0 +1,17 @@
+#pragma once
+#include <map>
+#include <string>
+
+namespace semantic_edge_vo {
+
+/// Reads a tool's command line: each flag of `values` is followed by its value, stored in the string
+/// it points to; each flag of `switches` stands alone and sets its bool. Values are text; the tool
+/// converts and checks them.
+/// @return "" or what is wrong: an unknown flag, a flag without its value
+std::string parseFlags(int argc, char** argv, const std::map<std::string, std::string*>& values,
+                       const std::map<std::string, bool*>& switches);
+
+/// Prints `usage` to stdout when the only argument is --help or -h: true then (the tool exits 0).
+bool printUsageIfAsked(int argc, char** argv, const char* usage);
+
+}  // namespace semantic_edge_vo
