@@ -13,6 +13,12 @@ namespace semantic_edge_vo {
 /// index and its confidence x 255 (the synthetic `class_probability/` layout: CV_8UC2 out).
 std::string readClassLabelsPng(const std::string& path, cv::Mat* labels);
 
+/// Writes per-class probabilities (CV_8UC(C), probability x 255, as the Segmenter gives them; C at
+/// most 255) in the 4-channel layout readClassLabelsPng() reads, that of synthetic sequences'
+/// `class_probability/`: cv::imwrite channels (most probable class, its probability x 255, second
+/// class, its probability x 255), ties going to the lower class. "" or what is wrong.
+std::string writeClassLabelsPng(const std::string& path, const cv::Mat& probabilities);
+
 /// Edge classes and strength (`class_format: bitmask`): an 8-bit 4-channel PNG, cv::imread channels
 /// 0-2 = class bits 0-23, channel 3 = edge probability x 255 (the synthetic `edge_bitmask/` layout).
 /// CV_8UC4 out.

@@ -41,6 +41,37 @@ std::string readClassLabelsPng(const std::string& path, cv::Mat* labels) {
   return "";
 }
 
+std::string writeClassLabelsPng(const std::string& path, const cv::Mat& probabilities) {
+  const int classes = probabilities.channels();
+  if (probabilities.depth() != CV_8U || classes < 1 || classes > 255)
+    return path + ": expected 8-bit probabilities of 1 to 255 classes, got depth " + std::to_string(probabilities.depth()) + " and " +
+           std::to_string(classes) + " channel(s)";
+  cv::Mat top_two(probabilities.size(), CV_8UC4);
+  for (int y = 0; y < probabilities.rows; ++y) {
+    const std::uint8_t* p = probabilities.ptr<std::uint8_t>(y);
+    auto* out = top_two.ptr<cv::Vec4b>(y);
+    for (int x = 0; x < probabilities.cols; ++x, p += classes) {
+      int first = 0, second = classes > 1 ? 1 : 0;
+      if (classes > 1 && p[1] > p[0]) std::swap(first, second);
+      for (int c = 2; c < classes; ++c) {
+        if (p[c] > p[first]) {
+          second = first;
+          first = c;
+        } else if (p[c] > p[second]) {
+          second = c;
+        }
+      }
+      out[x] = cv::Vec4b(static_cast<std::uint8_t>(first), p[first], static_cast<std::uint8_t>(second), classes > 1 ? p[second] : 0);
+    }
+  }
+  try {
+    if (!cv::imwrite(path, top_two)) return path + ": could not be written";
+  } catch (const cv::Exception& e) {
+    return path + ": " + e.what();
+  }
+  return "";
+}
+
 std::string readEdgeBitmaskPng(const std::string& path, cv::Mat* bitmask) {
   cv::Mat image;
   if (std::string error = read8Bit(path, &image); !error.empty()) return error;

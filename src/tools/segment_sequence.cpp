@@ -1,0 +1,104 @@
+// Runs the segmentation network over a KITTI odometry folder once and saves its class labels, so that
+// the odometry can use them later without the network: offline (run_sequence --intake fused reads
+// DIR/class_probability/) and live (kitti_to_bag --semantics-labels), where on 2 cores the network
+// and the odometry do not both keep up with the camera. Usage: kUsage below.
+#include <cstdio>
+#include <filesystem>
+#include <vector>
+
+#include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/command_line.h"
+#include "semantic_edge_vo/intake_options_loading.h"
+#include "semantic_edge_vo/kitti_sequence.h"
+#include "semantic_edge_vo/options_loading.h"
+#include "semantic_edge_vo/progress_bar.h"
+#include "semantic_edge_vo/robust_statistics.h"
+#include "semantic_edge_vo/semantic_map_files.h"
+#include "semantic_edge_vo/sequence_input.h"
+#include "semantic_edge_vo/yaml_parameter_source.h"
+
+using namespace semantic_edge_vo;
+
+namespace {
+
+const char* const kUsage = R"(usage: segment_sequence --sequence DIR --segmenter-model PATH [--output OUT] [--config FILE] [--quiet]
+Runs the segmentation network (OpenCV dnn; e.g. ENet's model-best.opencv.net) on every frame of a
+KITTI odometry folder (image_2/ colour frames when present, else image_0/) and writes its labels to
+OUT/%06d.png (default OUT: DIR/class_probability), 4 x 8-bit: cv::imwrite channels (most probable
+class, its probability x 255, second class, its probability x 255), the layout of synthetic
+sequences. With OUT the default, run_sequence --intake fused then reads them instead of running the
+network; kitti_to_bag --semantics-labels OUT puts them in a bag for the launch file's fused intake
+(class_format labels). --config reads the segmenter block and the class table (edge_intake/classes)
+of a file laid out like config/semantic_edge_vo.yaml.
+)";
+
+struct Arguments {
+  std::string sequence, model, output, config;
+  bool quiet = false;
+};
+
+std::string parse(int argc, char** argv, Arguments* args) {
+  const std::string error = parseFlags(argc, argv,
+                                       {{"--sequence", &args->sequence}, {"--segmenter-model", &args->model},
+                                        {"--output", &args->output}, {"--config", &args->config}},
+                                       {{"--quiet", &args->quiet}});
+  if (!error.empty()) return error;
+  if (args->sequence.empty() || args->model.empty()) return "--sequence DIR and --segmenter-model PATH are required";
+  if (args->output.empty()) args->output = args->sequence + "/class_probability";
+  return {};
+}
+
+/// The segmenter's options and the class table: built-in (ENet, Cityscapes), then the config file's.
+std::string loadConfig(const std::string& path, SegmenterOptions* segmenter, ClassTable* classes) {
+  const YamlParameterSource file(path);
+  if (!file.error().empty()) return file.error();
+  const YamlParameterSource segmenter_block = file.section("segmenter"), intake_block = file.section("edge_intake");
+  ParameterLoader segmenter_loader(segmenter_block), intake_loader(intake_block);
+  std::string error = loadSegmenterOptions(&segmenter_loader, segmenter);
+  if (error.empty()) error = loadClassTable(&intake_loader, classes);
+  if (error.empty()) error = segmenter_block.error();
+  return error.empty() ? intake_block.error() : error;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (printUsageIfAsked(argc, argv, kUsage)) return 0;
+  Arguments args;
+  SegmenterOptions segmenter;
+  ClassTable classes = ClassTable::cityscapes();
+  std::string error = parse(argc, argv, &args);
+  if (error.empty() && !args.config.empty()) error = loadConfig(args.config, &segmenter, &classes);
+  if (!error.empty()) {
+    std::fprintf(stderr, "segment_sequence: %s\n%s", error.c_str(), kUsage);
+    return 2;
+  }
+  segmenter.model_path = args.model;
+  SequenceInput input;
+  error = input.open(args.sequence, IntakeMode::kFused, segmenter, classes.size());
+  if (!error.empty()) {
+    std::fprintf(stderr, "segment_sequence: %s\n", error.c_str());
+    return 1;
+  }
+  std::filesystem::create_directories(args.output);
+  const int frames = static_cast<int>(input.size());
+  std::printf("segment_sequence: %s, %d frames, %d classes -> %s\n", args.sequence.c_str(), frames, classes.size(),
+              args.output.c_str());
+  ProgressBar progress(frames, !args.quiet);
+  std::vector<double> segmenter_ms;
+  for (int i = 0; i < frames; ++i) {
+    cv::Mat gray;
+    ClassEvidence evidence;
+    error = input.read(static_cast<std::size_t>(i), &gray, &evidence);
+    if (error.empty()) error = writeClassLabelsPng(kittiFramePath(args.output, static_cast<std::size_t>(i)), evidence.values);
+    if (!error.empty()) {
+      std::fprintf(stderr, "\nsegment_sequence: frame %d: %s\n", i, error.c_str());
+      return 1;
+    }
+    segmenter_ms.push_back(input.lastSegmenterMs());
+    progress.update(i + 1);
+  }
+  std::printf("segment_sequence: wrote %d label images to %s; the network took %.1f ms per frame (median)\n", frames,
+              args.output.c_str(), frames > 0 ? median(segmenter_ms) : 0.0);
+  return 0;
+}
