@@ -59,7 +59,15 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
   }
   const PinholeCamera& camera = window[first]->frame->pyramid->level(0).camera;
 
-  ceres::Problem problem;
+  // One loss object per kind of residual, shared by all of them (the problem does not own them):
+  // a window has tens of thousands of residuals.
+  constexpr double kMeasuredMotionHuber = 3.0;  // sigmas: a measurement far off (corners on traffic) pulls with a bounded force
+  ceres::HuberLoss measured_motion_loss(kMeasuredMotionHuber);
+  ceres::HuberLoss photometric_loss(options_.photometric_huber / options_.photometric_sigma);
+  ceres::ScaledLoss edge_loss(new ceres::HuberLoss(options_.edge_huber / options_.edge_sigma), options_.edge_weight, ceres::TAKE_OWNERSHIP);
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
   for (factors::PoseParameters& pose : poses) problem.AddParameterBlock(pose.data(), 7, new factors::PoseManifold());
   problem.SetParameterBlockConstant(poses[0].data());
   for (std::size_t k = 1; k < count; ++k) {
@@ -70,16 +78,14 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
                                poses[k - 1].data(), poses[k].data());
     const MeasuredMotion& measured = later.measured_motion;
     if (measured.from_id != earlier.id) continue;
-    // Robust: a measurement far off (corners on traffic, say) pulls with a bounded force.
-    constexpr double kMeasuredMotionHuber = 3.0;  // sigmas
     if (options_.measured_rotation_sigma_deg > 0.0)
       problem.AddResidualBlock(new factors::RelativeRotationFactor(measured.R_from_this, options_.measured_rotation_sigma_deg * M_PI / 180.0),
-                               new ceres::HuberLoss(kMeasuredMotionHuber), poses[k - 1].data(), poses[k].data());
+                               &measured_motion_loss, poses[k - 1].data(), poses[k].data());
     if (options_.measured_direction_sigma_deg > 0.0) {
       const double distance = (later.T_world_cam.translation() - earlier.T_world_cam.translation()).norm();
       problem.AddResidualBlock(
           new factors::TravelDirectionFactor(measured.direction, options_.measured_direction_sigma_deg * M_PI / 180.0, distance),
-          new ceres::HuberLoss(kMeasuredMotionHuber), poses[k - 1].data(), poses[k].data());
+          &measured_motion_loss, poses[k - 1].data(), poses[k].data());
     }
   }
 
@@ -95,8 +101,6 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
       if (window[first + h]->points[i].hasDepth()) refs.push_back({h, i});
   inverse_depths.resize(refs.size());
 
-  const double photometric_loss = options_.photometric_huber / options_.photometric_sigma;
-  const double edge_loss = options_.edge_huber / options_.edge_sigma;
   for (std::size_t r = 0; r < refs.size(); ++r) {
     const Keyframe& host = *window[first + refs[r].host];
     const MapPoint& point = host.points[refs[r].index];
@@ -114,7 +118,7 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
       double* host_pose = poses[refs[r].host].data();
       double* target_pose = poses[t].data();
       problem.AddResidualBlock(new factors::PhotometricFactor(ray, host_value, *interpolators[t], camera, options_.photometric_sigma),
-                               new ceres::HuberLoss(photometric_loss), host_pose, target_pose, &inverse_depths[r]);
+                               &photometric_loss, host_pose, target_pose, &inverse_depths[r]);
       ++result.photometric_residuals;
       ++observed;
       FieldMatch match;
@@ -123,8 +127,7 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
         problem.AddResidualBlock(
             new factors::EdgeFactor(ray, Eigen::Vector2d(match.u, match.v), Eigen::Vector2d(match.normal_x, match.normal_y), camera,
                                     options_.edge_sigma),
-            new ceres::ScaledLoss(new ceres::HuberLoss(edge_loss), options_.edge_weight, ceres::TAKE_OWNERSHIP), host_pose,
-            target_pose, &inverse_depths[r]);
+            &edge_loss, host_pose, target_pose, &inverse_depths[r]);
         ++result.edge_residuals;
       }
     }
