@@ -28,8 +28,8 @@ OUT/%06d.png (default OUT: DIR/class_probability), 4 x 8-bit: cv::imwrite channe
 class, its probability x 255, second class, its probability x 255), the layout of synthetic
 sequences. With OUT the default, run_sequence --intake fused then reads them instead of running the
 network; kitti_to_bag --semantics-labels OUT puts them in a bag for the launch file's fused intake
-(class_format labels). --config reads the segmenter block and the class table (edge_intake/classes)
-of a file laid out like config/semantic_edge_vo.yaml.
+(class_format labels). OUT must not hold files yet. --config reads the segmenter block and the class
+table (edge_intake/classes) of a file laid out like config/semantic_edge_vo.yaml.
 )";
 
 struct Arguments {
@@ -78,6 +78,11 @@ int main(int argc, char** argv) {
   error = input.open(args.sequence, IntakeMode::kFused, segmenter, classes.size());
   if (!error.empty()) {
     std::fprintf(stderr, "segment_sequence: %s\n", error.c_str());
+    return 1;
+  }
+  // A synthetic sequence's class_probability/ holds its simulated network: never overwritten unasked.
+  if (std::filesystem::is_directory(args.output) && !std::filesystem::is_empty(args.output)) {
+    std::fprintf(stderr, "segment_sequence: %s exists and is not empty: remove it, or choose another --output\n", args.output.c_str());
     return 1;
   }
   std::filesystem::create_directories(args.output);
