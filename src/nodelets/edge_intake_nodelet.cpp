@@ -25,6 +25,7 @@
 #include "semantic_edge_vo/intake_options_loading.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
 #include "semantic_edge_vo/options_loading.h"
+#include "semantic_edge_vo/ros/rectifier.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
 #include "semantic_edge_vo/ros/stamp_order.h"
 
@@ -46,6 +47,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     int max_pending = 10;
     loader.load("transport", &transport, "(raw | compressed)");
     loader.load("time_jump_back", &time_jump_back_, "s");
+    loader.load("rectify", &rectify_, "(undistort with camera_info's D, K, R, P; canny mode)");
     std::string error = loadSemanticEdgeOptions(&loader, &options_);
     if (error.empty() && options_.mode != IntakeMode::kCanny) {
       loader.load("class_format", &class_format, "(probabilities | labels | bitmask)");
@@ -64,6 +66,8 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     if (error.empty()) error = parameters.error();
     if (error.empty() && queue_size < 1) error = "queue_size must be >= 1";
     if (error.empty() && !(time_jump_back_ > 0.0)) error = "time_jump_back must be > 0 s";
+    if (error.empty() && rectify_ && options_.mode != IntakeMode::kCanny)
+      error = "rectify works in mode canny only (class maps from a network are not rectified here): rectify the images upstream";
     if (error.empty() && transport != "raw" && transport != "compressed")
       error = "transport must be raw or compressed (got '" + transport + "')";
     if (error.empty() && !parseClassEvidenceForm(class_format, &class_form_))
@@ -154,6 +158,12 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
       rejections_->reject("image", reason, detail);
       return;
     }
+    if (rectify_) {
+      if (const std::string problem = rectifier_.prepare(*info); !problem.empty()) {
+        rejections_->reject("image", "invalid_camera_info", "cannot rectify: " + problem);
+        return;
+      }
+    }
     const ros::Time previous = stamp_order_.last();
     switch (stamp_order_.accept(image->header.stamp)) {
       case StampOrder::Verdict::kNext: break;
@@ -217,7 +227,8 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     }
     auto frame = boost::make_shared<SemanticEdgeFrame>();
     frame->header = image.header;
-    frame->camera_info = *input.info;
+    frame->camera_info = rectify_ ? rectifier_.rectifiedInfo() : *input.info;
+    frame->camera_info.header = input.info->header;
     frame->class_names = classes_.names();
     // The frame owns its grayscale image; write it in place and run the detectors on that buffer.
     frame->image.header = image.header;
@@ -227,7 +238,8 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     frame->image.step = image.width;
     frame->image.data.resize(static_cast<std::size_t>(image.width) * image.height);
     cv::Mat gray(static_cast<int>(image.height), static_cast<int>(image.width), CV_8UC1, frame->image.data.data());
-    gray_input->image.copyTo(gray);
+    if (rectify_) rectifier_.rectify(gray_input->image, &gray);  // same size and type: written in place
+    else gray_input->image.copyTo(gray);
 
     EdgeSet edges;
     ClassEvidence evidence;  // views the class map message
@@ -308,6 +320,8 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
   ros::WallTimer expiry_timer_;
   std::mutex mutex_;  // guards everything below and serializes all callbacks (frames leave in stamp order)
   std::unique_ptr<FramePairing> pairing_;
+  bool rectify_ = false;  // parameter
+  Rectifier rectifier_;   // maps of the last calibration (rectify_ only)
   double time_jump_back_ = 1.0;  // s
   StampOrder stamp_order_{time_jump_back_};  // of the accepted images
 };

@@ -1,11 +1,13 @@
 // rostest: the fused intake pairs class maps by stamp, waits for late ones, falls back to Canny on
 // missing ones, refuses bad class maps by name and keeps running; compressed images are taken; the
-// semantic_edges intake reads the bitmask form; the Segmenter publishes ENet class probabilities (skipped without the model).
+// semantic_edges intake reads the bitmask form; a rectifying intake undistorts a barrel-distorted
+// camera into its P camera; the Segmenter publishes ENet class probabilities (skipped without the model).
 #include <filesystem>
 #include <functional>
 #include <mutex>
 
 #include <gtest/gtest.h>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <ros/ros.h>
@@ -82,6 +84,14 @@ class SemanticIntake : public ::testing::Test {
     ASSERT_GT(class_publisher_.getNumSubscribers(), 0u) << "EdgeIntake never subscribed to class_probabilities";
     ros::WallDuration(1.0).sleep();
     stamp_ = ros::Time::now();
+  }
+
+  /// Keeps the latest frame published on `topic` in `*frame` (guarded by mutex_).
+  ros::Subscriber latestFrame(const std::string& topic, SemanticEdgeFrameConstPtr* frame) {
+    return node_.subscribe<SemanticEdgeFrame>(topic, 5, [this, frame](const SemanticEdgeFrameConstPtr& f) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      *frame = f;
+    });
   }
 
   bool waitFor(const std::function<bool()>& condition, double seconds = 5.0) {
@@ -185,10 +195,7 @@ TEST_F(SemanticIntake, CompressedImagesAreDecoded) {
   ros::Publisher compressed = node_.advertise<sensor_msgs::CompressedImage>("/cam2/image/compressed", 5);
   ros::Publisher info = node_.advertise<sensor_msgs::CameraInfo>("/cam2/camera_info", 5);
   SemanticEdgeFrameConstPtr frame;
-  ros::Subscriber frames = node_.subscribe<SemanticEdgeFrame>("/cam2/edge_frame", 5, [&](const SemanticEdgeFrameConstPtr& f) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    frame = f;
-  });
+  const ros::Subscriber frames = latestFrame("/cam2/edge_frame", &frame);
   ASSERT_TRUE(waitFor([&] { return compressed.getNumSubscribers() > 0 && info.getNumSubscribers() > 0; }, 10.0));
   ros::WallDuration(0.5).sleep();
   sensor_msgs::CompressedImage msg;
@@ -207,10 +214,7 @@ TEST_F(SemanticIntake, SemanticEdgesFromTheBitmaskForm) {
   ros::Publisher info = node_.advertise<sensor_msgs::CameraInfo>("/cam3/camera_info", 5);
   ros::Publisher bitmasks = node_.advertise<sensor_msgs::Image>("/cam3/class_edge_probabilities", 5);
   SemanticEdgeFrameConstPtr frame;
-  ros::Subscriber frames = node_.subscribe<SemanticEdgeFrame>("/cam3/edge_frame", 5, [&](const SemanticEdgeFrameConstPtr& f) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    frame = f;
-  });
+  const ros::Subscriber frames = latestFrame("/cam3/edge_frame", &frame);
   ASSERT_TRUE(waitFor([&] { return images.getNumSubscribers() > 0 && bitmasks.getNumSubscribers() > 0; }, 10.0));
   ros::WallDuration(0.5).sleep();
   // Road and car bits on a 3-pixel band at the boundary, edge strength peaking on it.
@@ -230,6 +234,50 @@ TEST_F(SemanticIntake, SemanticEdgesFromTheBitmaskForm) {
     both += frame->edge_class_mask[i] == bits;
   }
   EXPECT_GT(both, static_cast<std::size_t>(kHeight / 2)) << "boundary edges must carry road and car";
+}
+
+TEST_F(SemanticIntake, ARectifyingIntakeUndistortsIntoThePCamera) {
+  ros::Publisher images = node_.advertise<sensor_msgs::Image>("/cam4/image", 5);
+  ros::Publisher info = node_.advertise<sensor_msgs::CameraInfo>("/cam4/camera_info", 5);
+  SemanticEdgeFrameConstPtr frame;
+  const ros::Subscriber frames = latestFrame("/cam4/edge_frame", &frame);
+  ASSERT_TRUE(waitFor([&] { return images.getNumSubscribers() > 0 && info.getNumSubscribers() > 0; }, 10.0));
+  ros::WallDuration(0.5).sleep();
+  // A straight boundary near the left border of a barrel-distorted raw image: rectified, it bows.
+  constexpr int kRawColumn = 40;
+  cv::Mat raw(kHeight, kWidth, CV_8U, cv::Scalar(60));
+  raw.colRange(kRawColumn, kWidth).setTo(190);
+  const ros::Time stamp = ros::Time::now();
+  sensor_msgs::CameraInfo calibration = infoMsg(stamp);
+  calibration.distortion_model = "plumb_bob";
+  calibration.D = {-0.30, 0.10, 0.0, 0.0, 0.0};
+  calibration.P = {280, 0, 165, 0, 0, 280, 118, 0, 0, 0, 1, 0};
+  images.publish(imageMsg(raw, "mono8", stamp));
+  info.publish(calibration);
+  ASSERT_TRUE(waitFor([&] { return frame != nullptr; })) << "no frame from the rectifying intake";
+  EXPECT_EQ(frame->camera_info.K[0], 280.0) << "the frame describes the rectified (P) camera";
+  EXPECT_EQ(frame->camera_info.K[2], 165.0);
+  for (double d : frame->camera_info.D) EXPECT_EQ(d, 0.0);
+
+  // Where the raw boundary (between columns 39 and 40) lands in the P camera, row by row.
+  std::vector<cv::Point2f> boundary, rectified;
+  for (int y = 0; y < kHeight; ++y) boundary.emplace_back(kRawColumn - 0.5f, static_cast<float>(y));
+  const cv::Matx33d K(calibration.K.data()), P(280, 0, 165, 0, 280, 118, 0, 0, 1);
+  cv::undistortPoints(boundary, rectified, K, cv::Mat(calibration.D, true), cv::Matx33d::eye(), P);
+  float low = 1e9f, high = -1e9f;
+  for (const cv::Point2f& p : rectified)
+    if (p.y >= 0 && p.y < kHeight) low = std::min(low, p.x), high = std::max(high, p.x);
+  ASSERT_GT(high - low, 3.0f) << "the test distortion must bow the line";
+  std::size_t near = 0, on_boundary = 0;
+  for (std::size_t i = 0; i < frame->edge_u.size(); ++i) {
+    if (frame->edge_u[i] > high + 10.0f) continue;  // the rectified image's border, not the boundary
+    ++on_boundary;
+    float best = 1e9f;
+    for (const cv::Point2f& p : rectified) best = std::min(best, std::hypot(p.x - frame->edge_u[i], p.y - frame->edge_v[i]));
+    near += best < 1.0f;
+  }
+  EXPECT_GT(on_boundary, static_cast<std::size_t>(kHeight / 2));
+  EXPECT_GT(near, on_boundary * 9 / 10) << "the edges must lie on the undistorted boundary";
 }
 
 TEST_F(SemanticIntake, SegmenterPublishesEnetProbabilities) {

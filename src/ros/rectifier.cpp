@@ -1,0 +1,63 @@
+#include "semantic_edge_vo/ros/rectifier.h"
+
+#include <algorithm>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace semantic_edge_vo {
+namespace {
+
+bool sameCalibration(const sensor_msgs::CameraInfo& a, const sensor_msgs::CameraInfo& b) {
+  return a.width == b.width && a.height == b.height && a.distortion_model == b.distortion_model && a.D == b.D && a.K == b.K &&
+         a.R == b.R && a.P == b.P;
+}
+
+template <std::size_t N>
+bool allZero(const boost::array<double, N>& values) {
+  return std::all_of(values.begin(), values.end(), [](double v) { return v == 0.0; });
+}
+
+}  // namespace
+
+std::string Rectifier::prepare(const sensor_msgs::CameraInfo& info) {
+  if (!map1_.empty() && sameCalibration(info, calibration_)) return "";
+  map1_ = cv::Mat();
+  map2_ = cv::Mat();
+  if (info.width == 0 || info.height == 0) return "camera_info has no image size";
+  if (info.K[0] <= 0.0 || info.K[4] <= 0.0) return "camera_info K has no focal length";
+  const cv::Matx33d K(info.K.data());
+  const cv::Matx33d R = allZero(info.R) ? cv::Matx33d::eye() : cv::Matx33d(info.R.data());
+  // The rectified camera: P's left 3x3 (K where a driver leaves P unset).
+  const cv::Matx33d P = allZero(info.P) ? K : cv::Matx33d(info.P[0], info.P[1], info.P[2], info.P[4], info.P[5], info.P[6], info.P[8],
+                                                          info.P[9], info.P[10]);
+  const cv::Size size(static_cast<int>(info.width), static_cast<int>(info.height));
+  const cv::Mat D(info.D, true);
+  const std::string& model = info.distortion_model;
+  if (model == "equidistant") {
+    if (info.D.size() != 4) return "equidistant distortion needs 4 coefficients, camera_info has " + std::to_string(info.D.size());
+    cv::fisheye::initUndistortRectifyMap(K, D, R, P, size, CV_16SC2, map1_, map2_);
+  } else if (model == "plumb_bob" || model == "rational_polynomial" || (model.empty() && info.D.empty())) {
+    cv::initUndistortRectifyMap(K, info.D.empty() ? cv::Mat() : D, R, P, size, CV_16SC2, map1_, map2_);
+  } else {
+    return "distortion model '" + model + "' is not supported (plumb_bob, rational_polynomial, equidistant)";
+  }
+  calibration_ = info;
+  return "";
+}
+
+void Rectifier::rectify(const cv::Mat& image, cv::Mat* rectified) const {
+  cv::remap(image, *rectified, map1_, map2_, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+}
+
+sensor_msgs::CameraInfo Rectifier::rectifiedInfo() const {
+  sensor_msgs::CameraInfo info = calibration_;
+  if (allZero(info.P)) info.P = {info.K[0], info.K[1], info.K[2], 0.0, info.K[3], info.K[4], info.K[5], 0.0, 0.0, 0.0, 1.0, 0.0};
+  info.K = {info.P[0], info.P[1], info.P[2], info.P[4], info.P[5], info.P[6], info.P[8], info.P[9], info.P[10]};
+  info.R = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
+  info.distortion_model = "plumb_bob";
+  info.D.assign(5, 0.0);
+  return info;
+}
+
+}  // namespace semantic_edge_vo
