@@ -47,7 +47,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     int max_pending = 10;
     loader.load("transport", &transport, "(raw | compressed)");
     loader.load("time_jump_back", &time_jump_back_, "s");
-    loader.load("rectify", &rectify_, "(undistort with camera_info's D, K, R, P; canny mode)");
+    loader.load("rectify", &rectify_, "(undistort with camera_info's D, K, R, P)");
     std::string error = loadSemanticEdgeOptions(&loader, &options_);
     if (error.empty() && options_.mode != IntakeMode::kCanny) {
       loader.load("class_format", &class_format, "(probabilities | labels | bitmask)");
@@ -66,8 +66,6 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     if (error.empty()) error = parameters.error();
     if (error.empty() && queue_size < 1) error = "queue_size must be >= 1";
     if (error.empty() && !(time_jump_back_ > 0.0)) error = "time_jump_back must be > 0 s";
-    if (error.empty() && rectify_ && options_.mode != IntakeMode::kCanny)
-      error = "rectify works in mode canny only (class maps from a network are not rectified here): rectify the images upstream";
     if (error.empty() && transport != "raw" && transport != "compressed")
       error = "transport must be raw or compressed (got '" + transport + "')";
     if (error.empty() && !parseClassEvidenceForm(class_format, &class_form_))
@@ -279,6 +277,15 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     if (!reason.empty()) {
       rejections_->reject("edge map", reason, detail);
       return false;
+    }
+    if (rectify_) {
+      // The maps come in the raw image's geometry, as the image does: the same remap, without
+      // blending class indices or bits, into new matrices (the views read the shared messages).
+      cv::Mat rectified_classes, rectified_edges;
+      rectifier_.rectify(evidence->values, &rectified_classes, evidence->form != ClassEvidenceForm::kProbabilities);
+      evidence->values = rectified_classes;
+      if (!edge_probability.empty()) rectifier_.rectify(edge_probability, &rectified_edges);
+      edge_probability = rectified_edges;
     }
     if (ExtractionError error = extractor.extract(gray, *evidence, edge_probability, edges)) {
       rejections_->reject("class map", error.reason, error.detail);

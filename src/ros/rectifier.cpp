@@ -46,8 +46,8 @@ std::string Rectifier::prepare(const sensor_msgs::CameraInfo& info) {
   return "";
 }
 
-void Rectifier::rectify(const cv::Mat& image, cv::Mat* rectified) const {
-  cv::remap(image, *rectified, map1_, map2_, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+void Rectifier::rectify(const cv::Mat& image, cv::Mat* rectified, bool nearest) const {
+  cv::remap(image, *rectified, map1_, map2_, nearest ? cv::INTER_NEAREST : cv::INTER_LINEAR, cv::BORDER_CONSTANT);
 }
 
 sensor_msgs::CameraInfo Rectifier::rectifiedInfo() const {

@@ -1,7 +1,7 @@
 // rostest: the fused intake pairs class maps by stamp, waits for late ones, falls back to Canny on
 // missing ones, refuses bad class maps by name and keeps running; compressed images are taken; the
-// semantic_edges intake reads the bitmask form; a rectifying intake undistorts a barrel-distorted
-// camera into its P camera; the Segmenter publishes ENet class probabilities (skipped without the model).
+// semantic_edges intake reads the bitmask form; a rectifying fused intake undistorts a
+// barrel-distorted camera's image and class map into its P camera; the Segmenter publishes ENet class probabilities (skipped without the model).
 #include <filesystem>
 #include <functional>
 #include <mutex>
@@ -56,12 +56,12 @@ sensor_msgs::CameraInfo infoMsg(const ros::Time& stamp) {
   return info;
 }
 
-/// Road 0.9 left, car 0.8 right, the rest spread thinly.
-cv::Mat probabilities(int classes = kClasses) {
+/// Road 0.9 left of `boundary`, car 0.8 right of it, the rest spread thinly.
+cv::Mat probabilities(int classes = kClasses, int boundary = kBoundary) {
   cv::Mat p(kHeight, kWidth, CV_32FC(classes));
   p.reshape(1).setTo(0.1 / (classes - 1));  // Scalar fills take at most 4 channels
   for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x) p.ptr<float>(y)[x * classes + (x < kBoundary ? kRoad : kCar)] = x < kBoundary ? 0.9f : 0.8f;
+    for (int x = 0; x < kWidth; ++x) p.ptr<float>(y)[x * classes + (x < boundary ? kRoad : kCar)] = x < boundary ? 0.9f : 0.8f;
   return p;
 }
 
@@ -236,14 +236,16 @@ TEST_F(SemanticIntake, SemanticEdgesFromTheBitmaskForm) {
   EXPECT_GT(both, static_cast<std::size_t>(kHeight / 2)) << "boundary edges must carry road and car";
 }
 
-TEST_F(SemanticIntake, ARectifyingIntakeUndistortsIntoThePCamera) {
+TEST_F(SemanticIntake, ARectifyingIntakeUndistortsImageAndClassesIntoThePCamera) {
   ros::Publisher images = node_.advertise<sensor_msgs::Image>("/cam4/image", 5);
   ros::Publisher info = node_.advertise<sensor_msgs::CameraInfo>("/cam4/camera_info", 5);
+  ros::Publisher classes = node_.advertise<sensor_msgs::Image>("/cam4/class_probabilities", 5);
   SemanticEdgeFrameConstPtr frame;
   const ros::Subscriber frames = latestFrame("/cam4/edge_frame", &frame);
-  ASSERT_TRUE(waitFor([&] { return images.getNumSubscribers() > 0 && info.getNumSubscribers() > 0; }, 10.0));
+  ASSERT_TRUE(waitFor([&] { return images.getNumSubscribers() > 0 && classes.getNumSubscribers() > 0; }, 10.0));
   ros::WallDuration(0.5).sleep();
-  // A straight boundary near the left border of a barrel-distorted raw image: rectified, it bows.
+  // A straight road/car boundary near the left border of a barrel-distorted raw image, in the image
+  // and in its class map: rectified, both bow alike.
   constexpr int kRawColumn = 40;
   cv::Mat raw(kHeight, kWidth, CV_8U, cv::Scalar(60));
   raw.colRange(kRawColumn, kWidth).setTo(190);
@@ -254,7 +256,9 @@ TEST_F(SemanticIntake, ARectifyingIntakeUndistortsIntoThePCamera) {
   calibration.P = {280, 0, 165, 0, 0, 280, 118, 0, 0, 0, 1, 0};
   images.publish(imageMsg(raw, "mono8", stamp));
   info.publish(calibration);
+  classes.publish(imageMsg(probabilities(kClasses, kRawColumn), "32FC19", stamp));
   ASSERT_TRUE(waitFor([&] { return frame != nullptr; })) << "no frame from the rectifying intake";
+  EXPECT_EQ(frame->intake_mode, "fused") << "the class map must have been paired";
   EXPECT_EQ(frame->camera_info.K[0], 280.0) << "the frame describes the rectified (P) camera";
   EXPECT_EQ(frame->camera_info.K[2], 165.0);
   for (double d : frame->camera_info.D) EXPECT_EQ(d, 0.0);
@@ -268,16 +272,19 @@ TEST_F(SemanticIntake, ARectifyingIntakeUndistortsIntoThePCamera) {
   for (const cv::Point2f& p : rectified)
     if (p.y >= 0 && p.y < kHeight) low = std::min(low, p.x), high = std::max(high, p.x);
   ASSERT_GT(high - low, 3.0f) << "the test distortion must bow the line";
-  std::size_t near = 0, on_boundary = 0;
+  const std::uint32_t both = (1u << kRoad) | (1u << kCar);
+  std::size_t near = 0, on_boundary = 0, with_both = 0;
   for (std::size_t i = 0; i < frame->edge_u.size(); ++i) {
     if (frame->edge_u[i] > high + 10.0f) continue;  // the rectified image's border, not the boundary
     ++on_boundary;
+    with_both += frame->edge_class_mask[i] == both;
     float best = 1e9f;
     for (const cv::Point2f& p : rectified) best = std::min(best, std::hypot(p.x - frame->edge_u[i], p.y - frame->edge_v[i]));
     near += best < 1.0f;
   }
   EXPECT_GT(on_boundary, static_cast<std::size_t>(kHeight / 2));
   EXPECT_GT(near, on_boundary * 9 / 10) << "the edges must lie on the undistorted boundary";
+  EXPECT_GT(with_both, on_boundary * 9 / 10) << "the rectified class map must give the boundary both classes";
 }
 
 TEST_F(SemanticIntake, SegmenterPublishesEnetProbabilities) {

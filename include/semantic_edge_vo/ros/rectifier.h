@@ -15,9 +15,9 @@ class Rectifier {
  public:
   /// Prepares the maps for images of `info`; "" or what is wrong (distortion model, matrices).
   std::string prepare(const sensor_msgs::CameraInfo& info);
-  /// `image` (the size of the last prepare()) rectified into `rectified`, bilinear; outside the
-  /// original image: black.
-  void rectify(const cv::Mat& image, cv::Mat* rectified) const;
+  /// `image` (the size of the last prepare(), any number of channels) rectified into `rectified`,
+  /// bilinear, or nearest for maps of class indices or bits; outside the original image: zero.
+  void rectify(const cv::Mat& image, cv::Mat* rectified, bool nearest = false) const;
   /// CameraInfo of the rectified images: P's intrinsics in K and P, no distortion, R identity.
   sensor_msgs::CameraInfo rectifiedInfo() const;
 
