@@ -213,8 +213,18 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     }
   }
 
-  /// Edges of an incomplete frame (Canny, every class bit: the class is unknown) or of a complete one.
   void process(const FramePairing::Frame& input) {
+    try {
+      makeFrame(input);
+    } catch (const cv::Exception& e) {
+      // An OpenCV assertion on input the checks let through must not take the manager (and every
+      // nodelet in it) down: the frame is dropped, the intake goes on.
+      rejections_->reject("image", "processing_failed", e.what());
+    }
+  }
+
+  /// Edges of an incomplete frame (Canny, every class bit: the class is unknown) or of a complete one.
+  void makeFrame(const FramePairing::Frame& input) {
     const sensor_msgs::Image& image = *input.image;
     cv_bridge::CvImageConstPtr gray_input;
     try {
@@ -281,10 +291,11 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     if (rectify_) {
       // The maps come in the raw image's geometry, as the image does: the same remap, without
       // blending class indices or bits, into new matrices (the views read the shared messages).
-      cv::Mat rectified_classes, rectified_edges;
-      rectifier_.rectify(evidence->values, &rectified_classes, evidence->form != ClassEvidenceForm::kProbabilities);
-      evidence->values = rectified_classes;
+      cv::Mat rectified_classes, rectified_edges;  // empty where there is no map (canny mode)
+      if (!evidence->values.empty())
+        rectifier_.rectify(evidence->values, &rectified_classes, evidence->form != ClassEvidenceForm::kProbabilities);
       if (!edge_probability.empty()) rectifier_.rectify(edge_probability, &rectified_edges);
+      evidence->values = rectified_classes;
       edge_probability = rectified_edges;
     }
     if (ExtractionError error = extractor.extract(gray, *evidence, edge_probability, edges)) {

@@ -94,6 +94,59 @@ class SemanticIntake : public ::testing::Test {
     });
   }
 
+  /// Plays a straight road/car boundary near the left border of a barrel-distorted raw image (and, with
+  /// `with_classes`, its class map, in the same raw geometry) into the rectifying intake of `camera`,
+  /// and checks that its frame describes the P camera and that the edges lie on the boundary's
+  /// undistorted curve (with both classes when the class map came along).
+  void expectRectifiedBoundary(const std::string& camera, bool with_classes) {
+    ros::Publisher images = node_.advertise<sensor_msgs::Image>(camera + "/image", 5);
+    ros::Publisher info = node_.advertise<sensor_msgs::CameraInfo>(camera + "/camera_info", 5);
+    ros::Publisher classes = node_.advertise<sensor_msgs::Image>(camera + "/class_probabilities", 5);
+    SemanticEdgeFrameConstPtr frame;
+    const ros::Subscriber frames = latestFrame(camera + "/edge_frame", &frame);
+    ASSERT_TRUE(waitFor([&] { return images.getNumSubscribers() > 0 && (!with_classes || classes.getNumSubscribers() > 0); }, 10.0));
+    ros::WallDuration(0.5).sleep();
+    constexpr int kRawColumn = 40;
+    cv::Mat raw(kHeight, kWidth, CV_8U, cv::Scalar(60));
+    raw.colRange(kRawColumn, kWidth).setTo(190);
+    const ros::Time stamp = ros::Time::now();
+    sensor_msgs::CameraInfo calibration = infoMsg(stamp);
+    calibration.distortion_model = "plumb_bob";
+    calibration.D = {-0.30, 0.10, 0.0, 0.0, 0.0};
+    calibration.P = {280, 0, 165, 0, 0, 280, 118, 0, 0, 0, 1, 0};
+    images.publish(imageMsg(raw, "mono8", stamp));
+    info.publish(calibration);
+    if (with_classes) classes.publish(imageMsg(probabilities(kClasses, kRawColumn), "32FC19", stamp));
+    ASSERT_TRUE(waitFor([&] { return frame != nullptr; })) << "no frame from the rectifying intake on " << camera;
+    EXPECT_EQ(frame->intake_mode, with_classes ? "fused" : "canny");
+    EXPECT_EQ(frame->camera_info.K[0], 280.0) << "the frame describes the rectified (P) camera";
+    EXPECT_EQ(frame->camera_info.K[2], 165.0);
+    for (double d : frame->camera_info.D) EXPECT_EQ(d, 0.0);
+
+    // Where the raw boundary (between columns 39 and 40) lands in the P camera, row by row.
+    std::vector<cv::Point2f> boundary, rectified;
+    for (int y = 0; y < kHeight; ++y) boundary.emplace_back(kRawColumn - 0.5f, static_cast<float>(y));
+    const cv::Matx33d K(calibration.K.data()), P(280, 0, 165, 0, 280, 118, 0, 0, 1);
+    cv::undistortPoints(boundary, rectified, K, cv::Mat(calibration.D, true), cv::Matx33d::eye(), P);
+    float low = 1e9f, high = -1e9f;
+    for (const cv::Point2f& p : rectified)
+      if (p.y >= 0 && p.y < kHeight) low = std::min(low, p.x), high = std::max(high, p.x);
+    ASSERT_GT(high - low, 3.0f) << "the test distortion must bow the line";
+    const std::uint32_t both = (1u << kRoad) | (1u << kCar);
+    std::size_t near = 0, on_boundary = 0, with_both = 0;
+    for (std::size_t i = 0; i < frame->edge_u.size(); ++i) {
+      if (frame->edge_u[i] > high + 10.0f) continue;  // the rectified image's border, not the boundary
+      ++on_boundary;
+      with_both += frame->edge_class_mask[i] == both;
+      float best = 1e9f;
+      for (const cv::Point2f& p : rectified) best = std::min(best, std::hypot(p.x - frame->edge_u[i], p.y - frame->edge_v[i]));
+      near += best < 1.0f;
+    }
+    EXPECT_GT(on_boundary, static_cast<std::size_t>(kHeight / 2));
+    EXPECT_GT(near, on_boundary * 9 / 10) << "the edges must lie on the undistorted boundary";
+    if (with_classes) EXPECT_GT(with_both, on_boundary * 9 / 10) << "the rectified class map must give the boundary both classes";
+  }
+
   bool waitFor(const std::function<bool()>& condition, double seconds = 5.0) {
     const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(seconds);
     while (ros::WallTime::now() < deadline) {
@@ -236,56 +289,9 @@ TEST_F(SemanticIntake, SemanticEdgesFromTheBitmaskForm) {
   EXPECT_GT(both, static_cast<std::size_t>(kHeight / 2)) << "boundary edges must carry road and car";
 }
 
-TEST_F(SemanticIntake, ARectifyingIntakeUndistortsImageAndClassesIntoThePCamera) {
-  ros::Publisher images = node_.advertise<sensor_msgs::Image>("/cam4/image", 5);
-  ros::Publisher info = node_.advertise<sensor_msgs::CameraInfo>("/cam4/camera_info", 5);
-  ros::Publisher classes = node_.advertise<sensor_msgs::Image>("/cam4/class_probabilities", 5);
-  SemanticEdgeFrameConstPtr frame;
-  const ros::Subscriber frames = latestFrame("/cam4/edge_frame", &frame);
-  ASSERT_TRUE(waitFor([&] { return images.getNumSubscribers() > 0 && classes.getNumSubscribers() > 0; }, 10.0));
-  ros::WallDuration(0.5).sleep();
-  // A straight road/car boundary near the left border of a barrel-distorted raw image, in the image
-  // and in its class map: rectified, both bow alike.
-  constexpr int kRawColumn = 40;
-  cv::Mat raw(kHeight, kWidth, CV_8U, cv::Scalar(60));
-  raw.colRange(kRawColumn, kWidth).setTo(190);
-  const ros::Time stamp = ros::Time::now();
-  sensor_msgs::CameraInfo calibration = infoMsg(stamp);
-  calibration.distortion_model = "plumb_bob";
-  calibration.D = {-0.30, 0.10, 0.0, 0.0, 0.0};
-  calibration.P = {280, 0, 165, 0, 0, 280, 118, 0, 0, 0, 1, 0};
-  images.publish(imageMsg(raw, "mono8", stamp));
-  info.publish(calibration);
-  classes.publish(imageMsg(probabilities(kClasses, kRawColumn), "32FC19", stamp));
-  ASSERT_TRUE(waitFor([&] { return frame != nullptr; })) << "no frame from the rectifying intake";
-  EXPECT_EQ(frame->intake_mode, "fused") << "the class map must have been paired";
-  EXPECT_EQ(frame->camera_info.K[0], 280.0) << "the frame describes the rectified (P) camera";
-  EXPECT_EQ(frame->camera_info.K[2], 165.0);
-  for (double d : frame->camera_info.D) EXPECT_EQ(d, 0.0);
+TEST_F(SemanticIntake, ARectifyingFusedIntakeUndistortsImageAndClassesIntoThePCamera) { expectRectifiedBoundary("/cam4", true); }
 
-  // Where the raw boundary (between columns 39 and 40) lands in the P camera, row by row.
-  std::vector<cv::Point2f> boundary, rectified;
-  for (int y = 0; y < kHeight; ++y) boundary.emplace_back(kRawColumn - 0.5f, static_cast<float>(y));
-  const cv::Matx33d K(calibration.K.data()), P(280, 0, 165, 0, 280, 118, 0, 0, 1);
-  cv::undistortPoints(boundary, rectified, K, cv::Mat(calibration.D, true), cv::Matx33d::eye(), P);
-  float low = 1e9f, high = -1e9f;
-  for (const cv::Point2f& p : rectified)
-    if (p.y >= 0 && p.y < kHeight) low = std::min(low, p.x), high = std::max(high, p.x);
-  ASSERT_GT(high - low, 3.0f) << "the test distortion must bow the line";
-  const std::uint32_t both = (1u << kRoad) | (1u << kCar);
-  std::size_t near = 0, on_boundary = 0, with_both = 0;
-  for (std::size_t i = 0; i < frame->edge_u.size(); ++i) {
-    if (frame->edge_u[i] > high + 10.0f) continue;  // the rectified image's border, not the boundary
-    ++on_boundary;
-    with_both += frame->edge_class_mask[i] == both;
-    float best = 1e9f;
-    for (const cv::Point2f& p : rectified) best = std::min(best, std::hypot(p.x - frame->edge_u[i], p.y - frame->edge_v[i]));
-    near += best < 1.0f;
-  }
-  EXPECT_GT(on_boundary, static_cast<std::size_t>(kHeight / 2));
-  EXPECT_GT(near, on_boundary * 9 / 10) << "the edges must lie on the undistorted boundary";
-  EXPECT_GT(with_both, on_boundary * 9 / 10) << "the rectified class map must give the boundary both classes";
-}
+TEST_F(SemanticIntake, ARectifyingCannyIntakeUndistortsTheImageIntoThePCamera) { expectRectifiedBoundary("/cam5", false); }
 
 TEST_F(SemanticIntake, SegmenterPublishesEnetProbabilities) {
   if (!std::filesystem::exists(kModel) || !std::filesystem::exists(kColorFrame))
