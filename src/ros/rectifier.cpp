@@ -47,7 +47,10 @@ std::string Rectifier::prepare(const sensor_msgs::CameraInfo& info) {
 }
 
 void Rectifier::rectify(const cv::Mat& image, cv::Mat* rectified, bool nearest) const {
-  cv::remap(image, *rectified, map1_, map2_, nearest ? cv::INTER_NEAREST : cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+  // Nearest neighbour reads the integer map alone: given the interpolation table too, OpenCV 4.6
+  // samples the wrong pixels (checked: an identity calibration scrambled every pixel).
+  if (nearest) cv::remap(image, *rectified, map1_, cv::noArray(), cv::INTER_NEAREST, cv::BORDER_CONSTANT);
+  else cv::remap(image, *rectified, map1_, map2_, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
 }
 
 sensor_msgs::CameraInfo Rectifier::rectifiedInfo() const {

@@ -79,6 +79,20 @@ TEST(Rectifier, UndoesALensDistortionIntoThePCamera) {
   for (double d : out.D) EXPECT_EQ(d, 0.0);
 }
 
+TEST(Rectifier, AnUndistortedCameraLeavesImagesAndClassMapsAsTheyAre) {
+  sensor_msgs::CameraInfo info = distortedCamera();
+  info.D.assign(5, 0.0);
+  info.P = {info.K[0], 0, info.K[2], 0, 0, info.K[4], info.K[5], 0, 0, 0, 1, 0};
+  Rectifier rectifier;
+  ASSERT_EQ(rectifier.prepare(info), "");
+  cv::Mat image = idealImage(), labels(kHeight, kWidth, CV_8UC2), out;
+  cv::randu(labels, 0, 19);
+  rectifier.rectify(image, &out);
+  EXPECT_EQ(cv::norm(out, image, cv::NORM_INF), 0.0) << "bilinear";
+  rectifier.rectify(labels, &out, true);
+  EXPECT_EQ(cv::norm(out, labels, cv::NORM_INF), 0.0) << "nearest: class indices unchanged";
+}
+
 TEST(Rectifier, RefusesWhatItCannotModel) {
   sensor_msgs::CameraInfo info = distortedCamera();
   info.distortion_model = "mirror";
