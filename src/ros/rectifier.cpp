@@ -5,6 +5,8 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "semantic_edge_vo/ros/conversions.h"
+
 namespace semantic_edge_vo {
 namespace {
 
@@ -28,9 +30,9 @@ std::string Rectifier::prepare(const sensor_msgs::CameraInfo& info) {
   if (info.K[0] <= 0.0 || info.K[4] <= 0.0) return "camera_info K has no focal length";
   const cv::Matx33d K(info.K.data());
   const cv::Matx33d R = allZero(info.R) ? cv::Matx33d::eye() : cv::Matx33d(info.R.data());
-  // The rectified camera: P's left 3x3 (K where a driver leaves P unset).
-  const cv::Matx33d P = allZero(info.P) ? K : cv::Matx33d(info.P[0], info.P[1], info.P[2], info.P[4], info.P[5], info.P[6], info.P[8],
-                                                          info.P[9], info.P[10]);
+  // The rectified camera is the one the odometry reads from any camera_info (P, or K where unset).
+  const PinholeCamera target = cameraFromInfo(info);
+  const cv::Matx33d P(target.fx, 0.0, target.cx, 0.0, target.fy, target.cy, 0.0, 0.0, 1.0);
   const cv::Size size(static_cast<int>(info.width), static_cast<int>(info.height));
   const cv::Mat D(info.D, true);
   const std::string& model = info.distortion_model;
@@ -54,13 +56,7 @@ void Rectifier::rectify(const cv::Mat& image, cv::Mat* rectified, bool nearest) 
 }
 
 sensor_msgs::CameraInfo Rectifier::rectifiedInfo() const {
-  sensor_msgs::CameraInfo info = calibration_;
-  if (allZero(info.P)) info.P = {info.K[0], info.K[1], info.K[2], 0.0, info.K[3], info.K[4], info.K[5], 0.0, 0.0, 0.0, 1.0, 0.0};
-  info.K = {info.P[0], info.P[1], info.P[2], info.P[4], info.P[5], info.P[6], info.P[8], info.P[9], info.P[10]};
-  info.R = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
-  info.distortion_model = "plumb_bob";
-  info.D.assign(5, 0.0);
-  return info;
+  return cameraInfoOf(cameraFromInfo(calibration_), calibration_.header.frame_id);
 }
 
 }  // namespace semantic_edge_vo

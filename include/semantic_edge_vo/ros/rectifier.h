@@ -18,7 +18,8 @@ class Rectifier {
   /// `image` (the size of the last prepare(), any number of channels) rectified into `rectified`,
   /// bilinear, or nearest for maps of class indices or bits; outside the original image: zero.
   void rectify(const cv::Mat& image, cv::Mat* rectified, bool nearest = false) const;
-  /// CameraInfo of the rectified images: P's intrinsics in K and P, no distortion, R identity.
+  /// CameraInfo of the rectified images (cameraInfoOf the camera cameraFromInfo reads from the
+  /// calibration): its intrinsics in K and P, no distortion, R identity.
   sensor_msgs::CameraInfo rectifiedInfo() const;
 
  private:
