@@ -9,6 +9,7 @@
 
 #include "semantic_edge_vo/class_table.h"
 #include "semantic_edge_vo/command_line.h"
+#include "semantic_edge_vo/host_cpu.h"
 #include "semantic_edge_vo/intake_options_loading.h"
 #include "semantic_edge_vo/keyframe_depth_report.h"
 #include "semantic_edge_vo/odometry.h"
@@ -145,6 +146,9 @@ int main(int argc, char** argv) {
   ProgressBar progress(frames, !args.quiet);
   double processing_s = 0.0;  // wall time of intake + odometry, without reading the files
   double odometry_s = 0.0;    // of the odometry alone (tracking + mapping; live, the intake has its own nodelet)
+  double odometry_cpu_s = 0.0;  // CPU time of all threads during the odometry: what the code costs, whatever the host
+  HostCpuTimes host_before, host_after;
+  const bool host_known = readHostCpuTimes(&host_before);
   for (int i = 0; i < frames; ++i) {
     cv::Mat gray;
     ClassEvidence evidence;
@@ -163,13 +167,16 @@ int main(int argc, char** argv) {
     }
     intake_ms[static_cast<std::size_t>(i)] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     const auto odometry_start = std::chrono::steady_clock::now();
+    const double odometry_cpu_start = processCpuSeconds();
     for (FramePose& pose : odometry.process(frame)) poses.push_back(pose);
+    odometry_cpu_s += processCpuSeconds() - odometry_cpu_start;
     odometry_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - odometry_start).count();
     processing_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (depth_report) stopOnError(depth_report->update(odometry.keyframes()), &depth_report);
     progress.update(i + 1);
   }
   for (FramePose& pose : odometry.flush()) poses.push_back(pose);
+  const bool host_measured = host_known && readHostCpuTimes(&host_after);
   if (depth_report) depth_report->finish();
   std::sort(poses.begin(), poses.end(), [](const FramePose& a, const FramePose& b) { return a.index < b.index; });
 
@@ -215,6 +222,13 @@ int main(int argc, char** argv) {
   std::printf("run_sequence: throughput %.1f frames/s (wall time of intake + odometry over all frames, %.1f s; "
               "files not counted); odometry alone (tracking + mapping) %.1f frames/s\n",
               frames / std::max(processing_s, 1e-9), processing_s, frames / std::max(odometry_s, 1e-9));
+  // Wall-time figures move with the host's load (1.5 times within an hour on a shared 2-core VM);
+  // the CPU time does not, and the stolen share says how contended the host was.
+  std::printf("run_sequence: odometry CPU time %.1f ms a frame (%.2f cores busy on average)", 1e3 * odometry_cpu_s / std::max(frames, 1),
+              odometry_cpu_s / std::max(odometry_s, 1e-9));
+  if (host_measured)
+    std::printf("; the hypervisor took %.0f %% of the host's CPU time during the run", 100.0 * stolenShare(host_before, host_after));
+  std::printf("\n");
   if (depth_report) {
     error = writeTextFile(args.output + "/keyframe_depths.txt", depth_report->table());
     if (!error.empty()) {
