@@ -285,9 +285,12 @@ NearestNeighborFieldData buildNearestNeighborField(const EdgeSetView& edges, int
   for (std::size_t i = 0; i < edges.size(); ++i)
     layer_masks[i] = layerMaskOf(options.kind, edges.normal_x[i], edges.normal_y[i], edges.class_mask[i],
                                  options.orientation_bins, field.num_layers);
+  // Every level keeps all full-resolution seeds, so a curve of edges holds 2^l seeds per pixel of
+  // level l: halving the bucket side per level keeps a bucket's seeds (the lookup's cost) about as
+  // at level 0. The lookups stay exact, whatever the bucket size.
   float scale = 1.0f;
   for (int l = 0; l < options.pyramid_levels; ++l, scale *= 0.5f)
-    field.levels.push_back(buildLevel(edges, layer_masks, width, height, scale, field.num_layers, options.cell_size));
+    field.levels.push_back(buildLevel(edges, layer_masks, width, height, scale, field.num_layers, std::max(1, options.cell_size >> l)));
   return field;
 }
 

@@ -57,6 +57,9 @@ TEST_P(FieldAgainstBruteForce, NearestAndAnyWithinAreExactAtEveryLevelAndLayer) 
   const NearestNeighborFieldData data = build(edges, options);
   const NearestNeighborFieldView field = data.view();
   ASSERT_EQ(field.validate(), "");
+  // Coarser levels get smaller buckets (their edges are denser per pixel); the answers stay exact.
+  EXPECT_EQ(field.levels[1].cell_size, 3);
+  EXPECT_EQ(field.levels[2].cell_size, 1);
 
   std::mt19937 rng(7);
   int found = 0, checked = 0;
