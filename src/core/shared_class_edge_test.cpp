@@ -27,7 +27,7 @@ SharedClassEdgeTest::SharedClassEdgeTest(const NearestNeighborFieldView& field, 
   width_ = level.width;
   height_ = level.height;
   near_layers_.assign(static_cast<std::size_t>(width_) * height_, 0u);
-  const float reach = radius_ + kHalfDiagonal;
+  const float reach = radius_ + kHalfDiagonal, reach2 = reach * reach;
   const int span = static_cast<int>(std::ceil(reach));
   const std::size_t cells = static_cast<std::size_t>(level.grid_cols) * level.grid_rows;
   const int layers = std::min(field.num_layers, 32);
@@ -45,10 +45,19 @@ SharedClassEdgeTest::SharedClassEdgeTest(const NearestNeighborFieldView& field, 
            e < starts[static_cast<std::size_t>(grid_end) * level.grid_cols]; ++e) {
         const std::uint32_t s = level.entry_seed[e];
         const float u = level.seed_u[s], v = level.seed_v[s];
-        const int cx = roundToPixel(u), cy = roundToPixel(v);
-        for (int y = std::max(row_begin, cy - span); y <= std::min(row_end - 1, cy + span); ++y)
-          for (int x = std::max(0, cx - span); x <= std::min(width_ - 1, cx + span); ++x)
-            if ((x - u) * (x - u) + (y - v) * (y - v) <= reach * reach) near_layers_[static_cast<std::size_t>(y) * width_ + x] |= bit;
+        const int cy = roundToPixel(v);
+        for (int y = std::max(row_begin, cy - span); y <= std::min(row_end - 1, cy + span); ++y) {
+          const float dy2 = (y - v) * (y - v);
+          if (dy2 > reach2) continue;  // adding a square cannot bring the sum back under
+          // The disc's chord on this row, one pixel wider on each side for rounding; the test below
+          // decides, as over the whole square.
+          const float half = std::sqrt(reach2 - dy2);
+          const int x_begin = std::max(0, static_cast<int>(std::floor(u - half)) - 1);
+          const int x_end = std::min(width_ - 1, static_cast<int>(std::ceil(u + half)) + 1);
+          std::uint32_t* row = near_layers_.data() + static_cast<std::size_t>(y) * width_;
+          for (int x = x_begin; x <= x_end; ++x)
+            if ((x - u) * (x - u) + dy2 <= reach2) row[x] |= bit;
+        }
       }
     }
   });
