@@ -6,6 +6,7 @@ up holds its latency; one that falls behind adds to it frame after frame, until 
 
   live_latency.py RECORDED_BAG --rate R [--steal S] [--label L] [--camera-info TOPIC] [--odometry TOPIC]
                   [--json FILE] [--frames-file FILE]
+  live_latency.py --table JSON...   (Markdown rows: one per run, then one per rate over its runs)
 
 Prints one summary line; --json writes the figures, --frames-file the per-frame latencies."""
 import argparse
@@ -54,8 +55,7 @@ def analyse(path, rate, camera_info_topic, odometry_topic, skip):
         raise ValueError("%s: fewer than two frames played, no frame period" % path)
     period_ms = 1e-6 * (stamps[-1] - stamps[0]) / (len(stamps) - 1) / rate  # wall time between played frames
     trend = slope(steady)
-    # Falling behind by `trend` ms a frame, the graph takes period + trend per frame.
-    sustained = 1e3 / (period_ms + trend) if trend > 0 else 1e3 / period_ms
+    behind = trend >= 0.05 * period_ms  # the latency grows by 5 % of a frame period a frame, or more
     return {
         "rate": rate,
         "played_hz": 1e3 / period_ms,
@@ -67,12 +67,51 @@ def analyse(path, rate, camera_info_topic, odometry_topic, skip):
         "latency_max_ms": max(steady) if steady else None,
         "latency_last_ms": steady[-1] if steady else None,
         "latency_trend_ms_per_frame": trend,
-        "sustained_hz": sustained,
+        "keeps_up": len(latency) == len(played) and not behind,
+        # Falling behind by `trend` ms a frame, the graph takes period + trend a frame (null: it did not).
+        "sustained_hz": 1e3 / (period_ms + trend) if behind else None,
         "latency_ms": [latency.get(i) for i in range(len(played))],
     }
 
 
+def verdict(result):
+    """What the run says about the graph, in words."""
+    if result["keeps_up"]:
+        return "keeps up"
+    words = []
+    if result["frames_without_pose"]:
+        words.append("%d frames without a pose" % result["frames_without_pose"])
+    if result["sustained_hz"] is not None:
+        words.append("falls behind (sustains about %.1f Hz)" % result["sustained_hz"])
+    return ", ".join(words)
+
+
+def table(paths):
+    """Markdown table of the runs in `paths` (latency.json files), then each rate's verdict over its runs."""
+    runs = [json.load(open(path)) for path in paths]
+    fmt = lambda v: "-" if v is None else "%.0f" % v
+    lines = ["| rate | played Hz | frames with a pose | median latency ms | max ms | trend ms/frame | verdict | hypervisor took |",
+             "|---:|---:|---:|---:|---:|---:|---|---:|"]
+    for r in runs:
+        lines.append("| %.2gx | %.1f | %d/%d | %s | %s | %+.1f | %s | %s %% |" % (
+            r["rate"], r["played_hz"], r["poses"], r["frames_played"], fmt(r["latency_median_ms"]),
+            fmt(r["latency_max_ms"]), r["latency_trend_ms_per_frame"], verdict(r), fmt(r["steal_percent"])))
+    lines.append("")
+    for rate in sorted({r["rate"] for r in runs}):
+        same = [r for r in runs if r["rate"] == rate]
+        kept = sum(r["keeps_up"] for r in same)
+        behind = [r["sustained_hz"] for r in same if r["sustained_hz"] is not None]
+        lines.append("- %.2gx (%.1f Hz): keeps up in %d of %d runs; median over the runs: latency %s ms, trend %+.1f ms/frame%s" % (
+            rate, same[0]["played_hz"], kept, len(same), fmt(statistics.median(r["latency_median_ms"] or 0.0 for r in same)),
+            statistics.median(r["latency_trend_ms_per_frame"] for r in same),
+            "; the runs that fell behind sustained %.1f Hz (median)" % statistics.median(behind) if behind else ""))
+    return "\n".join(lines)
+
+
 def main():
+    if len(sys.argv) > 1 and sys.argv[1] == "--table":
+        print(table(sys.argv[2:]))
+        return 0
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("bag")
     parser.add_argument("--rate", type=float, required=True, help="rosbag play rate the bag was played at")
@@ -92,16 +131,13 @@ def main():
     result["label"] = args.label
     result["steal_percent"] = args.steal
     median = result["latency_median_ms"]
-    keeps_up = result["frames_without_pose"] == 0 and result["latency_trend_ms_per_frame"] < 0.05 * 1e3 / result["played_hz"]
-    result["keeps_up"] = keeps_up
+    trend = result["latency_trend_ms_per_frame"]
     print("%s %.2fx (%.1f Hz): %d/%d frames with a pose; latency after frame %d: median %s ms, max %s ms, "
           "trend %+.1f ms/frame -> %s%s" % (
               args.label, args.rate, result["played_hz"], result["poses"], result["frames_played"], args.skip,
               "%.0f" % median if median is not None else "-",
               "%.0f" % result["latency_max_ms"] if result["latency_max_ms"] is not None else "-",
-              result["latency_trend_ms_per_frame"],
-              "keeps up" if keeps_up else "falls behind (sustains about %.1f Hz)" % result["sustained_hz"],
-              "" if args.steal is None else "; hypervisor took %.0f %% of the CPU time" % args.steal))
+              trend, verdict(result), "" if args.steal is None else "; hypervisor took %.0f %% of the CPU time" % args.steal))
     if args.json:
         with open(args.json, "w") as out:
             json.dump(result, out, indent=1)

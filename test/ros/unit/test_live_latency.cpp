@@ -77,6 +77,7 @@ TEST_F(LiveLatency, ASteadyLatencyKeepsUp) {
   EXPECT_NEAR(number(json, "latency_median_ms"), 80.0, 1e-3) << json;
   EXPECT_NEAR(number(json, "latency_trend_ms_per_frame"), 0.0, 1.0) << json;
   EXPECT_TRUE(flag(json, "keeps_up")) << json;
+  EXPECT_NE(json.find("\"sustained_hz\": null"), std::string::npos) << json;
 }
 
 TEST_F(LiveLatency, AGrowingLatencyFallsBehindAtTheRateItSustains) {
@@ -94,6 +95,7 @@ TEST_F(LiveLatency, AFrameWithoutAPoseIsNotKeepingUp) {
   EXPECT_EQ(number(json, "poses"), kFrames - 1) << json;
   EXPECT_EQ(number(json, "frames_without_pose"), 1) << json;
   EXPECT_FALSE(flag(json, "keeps_up")) << json;
+  EXPECT_NE(json.find("\"sustained_hz\": null"), std::string::npos) << "no trend, so no sustained rate: " << json;
 }
 
 }  // namespace
