@@ -11,6 +11,11 @@ namespace semantic_edge_vo {
 std::string parseFlags(int argc, char** argv, const std::map<std::string, std::string*>& values,
                        const std::map<std::string, bool*>& switches);
 
+/// Converts the value of `flag` (the text given to it; empty: `value` left as it is): all of it must
+/// be a whole number.
+/// @return "" or what is wrong, e.g. "--runs takes a whole number (got '3x')"
+std::string parseInt(const std::string& flag, const std::string& text, int* value);
+
 /// Prints `usage` to stdout when the only argument is --help or -h: true then (the tool exits 0).
 bool printUsageIfAsked(int argc, char** argv, const char* usage);
 

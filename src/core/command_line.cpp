@@ -1,6 +1,7 @@
 #include "semantic_edge_vo/command_line.h"
 
 #include <cstdio>
+#include <stdexcept>
 
 namespace semantic_edge_vo {
 
@@ -18,6 +19,20 @@ std::string parseFlags(int argc, char** argv, const std::map<std::string, std::s
     }
   }
   return "";
+}
+
+std::string parseInt(const std::string& flag, const std::string& text, int* value) {
+  if (text.empty()) return "";
+  std::size_t used = 0;
+  try {
+    const int parsed = std::stoi(text, &used);
+    if (used == text.size()) {
+      *value = parsed;
+      return "";
+    }
+  } catch (const std::exception&) {  // not a number, or out of range
+  }
+  return flag + " takes a whole number (got '" + text + "')";
 }
 
 bool printUsageIfAsked(int argc, char** argv, const char* usage) {

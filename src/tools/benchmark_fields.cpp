@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "semantic_edge_vo/canny_edge_detector.h"
+#include "semantic_edge_vo/command_line.h"
 #include "semantic_edge_vo/nearest_neighbor_field.h"
 #include "semantic_edge_vo/test_pattern.h"
 
@@ -35,20 +36,27 @@ std::uint32_t regionClass(float u, float v, int classes) {
 
 }  // namespace
 
+const char* const kUsage =
+    "usage: benchmark_fields [--image PNG] [--classes N] [--levels L] [--runs R] [--cell PX]\n"
+    "  default image: KITTI 06 frame 0 from ../shared (else a generated test pattern at 1241x376);\n"
+    "  --classes 19, --levels 4, --runs 50, --cell: the field's bucket side at level 0 (4)\n";
+
 int main(int argc, char** argv) {
+  if (printUsageIfAsked(argc, argv, kUsage)) return 0;
   std::string image_path = std::string(SEVO_DEFAULT_SHARED_DIR) + "/data/kitti_odometry/sequences/06/image_0/000000.png";
   int classes = 19, levels = 4, runs = 50, cell_size = FieldOptions().cell_size;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i], value = argv[i + 1];
-    if (flag == "--image") image_path = value;
-    else if (flag == "--classes") classes = std::stoi(value);
-    else if (flag == "--levels") levels = std::stoi(value);
-    else if (flag == "--runs") runs = std::stoi(value);
-    else if (flag == "--cell") cell_size = std::stoi(value);
-    else {
-      std::fprintf(stderr, "benchmark_fields: unknown flag %s\n", flag.c_str());
-      return 2;
-    }
+  std::string classes_text, levels_text, runs_text, cell_text;
+  std::string error = parseFlags(argc, argv,
+                                 {{"--image", &image_path}, {"--classes", &classes_text}, {"--levels", &levels_text},
+                                  {"--runs", &runs_text}, {"--cell", &cell_text}},
+                                 {});
+  if (error.empty()) error = parseInt("--classes", classes_text, &classes);
+  if (error.empty()) error = parseInt("--levels", levels_text, &levels);
+  if (error.empty()) error = parseInt("--runs", runs_text, &runs);
+  if (error.empty()) error = parseInt("--cell", cell_text, &cell_size);
+  if (!error.empty()) {
+    std::fprintf(stderr, "benchmark_fields: %s\n%s", error.c_str(), kUsage);
+    return 2;
   }
   if (classes < 1 || classes > 32 || levels < 1 || runs < 1) {
     std::fprintf(stderr, "benchmark_fields: need 1 <= classes <= 32, levels >= 1, runs >= 1\n");

@@ -21,6 +21,7 @@
 
 #include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/command_line.h"
 #include "semantic_edge_vo/point_sampler.h"
 #include "semantic_edge_vo/segmenter.h"
 #include "semantic_edge_vo/semantic_edge_extractor.h"
@@ -112,21 +113,27 @@ cv::Mat bitmaskWithStrength(const cv::Mat& edge_probabilities, float threshold) 
 
 }  // namespace
 
+const char* const kUsage =
+    "usage: benchmark_intake [--image PNG] [--segmenter-model PATH] [--runs R] [--segmenter-runs S]\n"
+    "  defaults: KITTI 06 frame 0 and ENet from ../shared (a test pattern and synthetic class\n"
+    "  probabilities without them), 30 intake runs, 5 segmenter runs\n";
+
 int main(int argc, char** argv) {
+  if (printUsageIfAsked(argc, argv, kUsage)) return 0;
   const std::string shared = SEVO_DEFAULT_SHARED_DIR;
   std::string image_path = shared + "/data/kitti_odometry/sequences/06/image_0/000000.png";
   std::string model_path = shared + "/models/enet_cityscapes/model-best.opencv.net";
   int runs = 30, segmenter_runs = 5;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i], value = argv[i + 1];
-    if (flag == "--image") image_path = value;
-    else if (flag == "--segmenter-model") model_path = value;
-    else if (flag == "--runs") runs = std::stoi(value);
-    else if (flag == "--segmenter-runs") segmenter_runs = std::stoi(value);
-    else {
-      std::fprintf(stderr, "benchmark_intake: unknown flag %s\n", flag.c_str());
-      return 2;
-    }
+  std::string runs_text, segmenter_runs_text;
+  std::string error = parseFlags(argc, argv,
+                                 {{"--image", &image_path}, {"--segmenter-model", &model_path}, {"--runs", &runs_text},
+                                  {"--segmenter-runs", &segmenter_runs_text}},
+                                 {});
+  if (error.empty()) error = parseInt("--runs", runs_text, &runs);
+  if (error.empty()) error = parseInt("--segmenter-runs", segmenter_runs_text, &segmenter_runs);
+  if (!error.empty()) {
+    std::fprintf(stderr, "benchmark_intake: %s\n%s", error.c_str(), kUsage);
+    return 2;
   }
   if (runs < 1 || segmenter_runs < 1) {
     std::fprintf(stderr, "benchmark_intake: need runs >= 1 and segmenter-runs >= 1\n");

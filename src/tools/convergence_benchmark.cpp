@@ -17,6 +17,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/command_line.h"
 #include "semantic_edge_vo/convergence_experiment.h"
 #include "semantic_edge_vo/line_plot.h"
 #include "semantic_edge_vo/point_sampler.h"
@@ -153,11 +154,18 @@ void writePlot(const std::string& path, const std::vector<ConvergenceCurve>& cur
 
 }  // namespace
 
+const char* const kUsage =
+    "usage: convergence_benchmark --output DIR [--scene city|village|highway] [--pairs P] [--trials N]\n"
+    "         [--seed S] [--reference-edges N] [--truncation PX] [--label-confusion X] [--edge-blur X]\n"
+    "         [--missed-edges X] [--spurious-edges X]   (defaults: city, 3 pairs, 20 trials, seed 1,\n"
+    "         3000 reference edges, truncation 150 px, no network noise)\n";
+
 int main(int argc, char** argv) {
+  if (printUsageIfAsked(argc, argv, kUsage)) return 0;
   Arguments args;
   std::string error;
   if (!parse(argc, argv, &args, &error)) {
-    std::fprintf(stderr, "convergence_benchmark: %s\n(see the comment at the top of src/tools/convergence_benchmark.cpp)\n", error.c_str());
+    std::fprintf(stderr, "convergence_benchmark: %s\n%s", error.c_str(), kUsage);
     return 2;
   }
   synthetic::SyntheticSequenceOptions sequence_options = synthetic::SyntheticSequenceOptions::forScene(args.scene, args.seed);

@@ -22,6 +22,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/command_line.h"
 #include "semantic_edge_vo/edge_repeatability.h"
 #include "semantic_edge_vo/line_plot.h"
 #include "semantic_edge_vo/semantic_edge_extractor.h"
@@ -212,11 +213,18 @@ cv::Mat plotScene(const std::string& scene, const std::vector<std::vector<Repeat
 
 }  // namespace
 
+const char* const kUsage =
+    "usage: edge_repeatability --output DIR [--scene city|village|highway|all] [--pairs N] [--sample N]\n"
+    "         [--frame-gap K] [--radius PX] [--seed S] [--label-confusion X] [--edge-blur X]\n"
+    "         [--missed-edges X] [--spurious-edges X]   (defaults: city, 5 pairs, 9000 pixels,\n"
+    "         gaps 1..3, 1.5 px, seed 1, noise strengths 0.3; all 0 leaves the noisy detectors out)\n";
+
 int main(int argc, char** argv) {
+  if (printUsageIfAsked(argc, argv, kUsage)) return 0;
   Arguments args;
   std::string error;
   if (!parse(argc, argv, &args, &error)) {
-    std::fprintf(stderr, "edge_repeatability: %s\n(see the comment at the top of src/tools/edge_repeatability.cpp)\n", error.c_str());
+    std::fprintf(stderr, "edge_repeatability: %s\n%s", error.c_str(), kUsage);
     return 2;
   }
   std::filesystem::create_directories(args.output);

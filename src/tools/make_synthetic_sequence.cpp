@@ -13,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "semantic_edge_vo/command_line.h"
 #include "semantic_edge_vo/progress_bar.h"
 #include "semantic_edge_vo/ros/sequence_bag_writer.h"
 #include "semantic_edge_vo/synthetic/sequence_directory_writer.h"
@@ -128,6 +129,7 @@ class FrameQueue {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (semantic_edge_vo::printUsageIfAsked(argc, argv, kUsage)) return 0;
   Arguments args;
   std::string error;
   if (!parse(argc, argv, &args, &error)) {

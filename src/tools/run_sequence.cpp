@@ -26,7 +26,8 @@ namespace {
 
 struct Arguments {
   std::string sequence, output, field, intake, segmenter_model, config;  ///< field, intake: empty = config's
-  std::string frames;  ///< empty: all
+  std::string frames_text;
+  int frames = 0;  ///< 0: all
   bool quiet = false;
 };
 
@@ -34,9 +35,11 @@ std::string parse(int argc, char** argv, Arguments* args) {
   const std::string error = parseFlags(argc, argv,
                                        {{"--sequence", &args->sequence}, {"--output", &args->output}, {"--field", &args->field},
                                         {"--intake", &args->intake}, {"--segmenter-model", &args->segmenter_model},
-                                        {"--config", &args->config}, {"--frames", &args->frames}},
+                                        {"--config", &args->config}, {"--frames", &args->frames_text}},
                                        {{"--quiet", &args->quiet}});
   if (!error.empty()) return error;
+  if (const std::string bad = parseInt("--frames", args->frames_text, &args->frames); !bad.empty()) return bad;
+  if (args->frames < 0) return "--frames takes a count >= 0 (0: all)";
   if (args->sequence.empty() || args->output.empty()) return "--sequence DIR and --output OUT are required";
   return {};
 }
@@ -127,8 +130,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::filesystem::create_directories(args.output);
-  const int frame_limit = std::atoi(args.frames.c_str());  // empty or 0: all
-  const int frames = frame_limit > 0 ? std::min<int>(frame_limit, static_cast<int>(input.size())) : static_cast<int>(input.size());
+  const int frames = args.frames > 0 ? std::min<int>(args.frames, static_cast<int>(input.size())) : static_cast<int>(input.size());
   const std::string field_name = frame_options.use_field ? toString(frame_options.field.kind) : "none";
   std::printf("run_sequence: %s, %d frames, %dx%d, intake %s, field %s, window optimisation %s%s%s\n", args.sequence.c_str(),
               frames, input.camera().width, input.camera().height, toString(frame_options.intake.mode),

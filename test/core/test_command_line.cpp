@@ -34,5 +34,17 @@ TEST(CommandLine, UnknownFlagsAndMissingValuesAreNamed) {
   EXPECT_FALSE(parsed.quiet);
 }
 
+TEST(CommandLine, NumbersMustBeWholeValues) {
+  int count = 7;
+  EXPECT_EQ(parseInt("--runs", "", &count), "");
+  EXPECT_EQ(count, 7);  // not given: the default stays
+  EXPECT_EQ(parseInt("--runs", "12", &count), "");
+  EXPECT_EQ(count, 12);
+  EXPECT_EQ(parseInt("--runs", "3x", &count), "--runs takes a whole number (got '3x')");
+  EXPECT_EQ(parseInt("--runs", "abc", &count), "--runs takes a whole number (got 'abc')");
+  EXPECT_NE(parseInt("--runs", "99999999999", &count), "");
+  EXPECT_EQ(count, 12);
+}
+
 }  // namespace
 }  // namespace semantic_edge_vo
