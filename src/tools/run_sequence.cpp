@@ -225,7 +225,8 @@ int main(int argc, char** argv) {
               "files not counted); odometry alone (tracking + mapping) %.1f frames/s\n",
               frames / std::max(processing_s, 1e-9), processing_s, frames / std::max(odometry_s, 1e-9));
   // Wall-time figures move with the host's load (1.5 times within an hour on a shared 2-core VM);
-  // the CPU time does not, and the stolen share says how contended the host was.
+  // the CPU time moves much less (not at all with time stolen by the hypervisor), and the stolen
+  // share says how contended the host was.
   std::printf("run_sequence: odometry CPU time %.1f ms a frame (%.2f cores busy on average)", 1e3 * odometry_cpu_s / std::max(frames, 1),
               odometry_cpu_s / std::max(odometry_s, 1e-9));
   if (host_measured)
