@@ -24,7 +24,7 @@ struct FieldOptions {
   int pyramid_levels = 4;        ///< level 0 is full resolution, each next level halves it
   int orientation_bins = 8;      ///< ONNF bins over 360 degrees of gradient direction
   float truncation_radius = 8.0f;   ///< lookups farther than this find nothing, pixels of the queried level (coarse levels reach far)
-  int cell_size = 4;             ///< bucket side at level 0, px (4: fastest lookups, see benchmark_fields); halved at each coarser level, down to 1
+  int cell_size = 4;             ///< bucket side at levels 0 and 1, px (4: fastest lookups, see benchmark_fields); halved at each level from 2 on, down to 2
 
   std::string validate() const;
 };

@@ -105,6 +105,8 @@ FieldLevelData buildLevel(const EdgeSetView& edges, const std::vector<std::uint3
   return level;
 }
 
+int bucketSide(int cell_size, int level) { return std::max(std::min(cell_size, 2), cell_size >> std::max(0, level - 1)); }
+
 FieldLevelView viewOf(const FieldLevelData& d) {
   FieldLevelView v;
   v.scale = d.scale;
@@ -286,11 +288,13 @@ NearestNeighborFieldData buildNearestNeighborField(const EdgeSetView& edges, int
     layer_masks[i] = layerMaskOf(options.kind, edges.normal_x[i], edges.normal_y[i], edges.class_mask[i],
                                  options.orientation_bins, field.num_layers);
   // Every level keeps all full-resolution seeds, so a curve of edges holds 2^l seeds per pixel of
-  // level l: halving the bucket side per level keeps a bucket's seeds (the lookup's cost) about as
-  // at level 0. The lookups stay exact, whatever the bucket size.
+  // level l, and a coarse level's buckets fill up: from level 2 on the bucket side halves with each
+  // level, down to 2 px (4, 4, 2, 2 px at cell_size 4). Smaller buckets mean more of them to visit
+  // and, per layer, to build: of the layouts measured (callgrind, 30 KITTI 06 frames, Canny and fused
+  // SNNF), this one cost the fewest instructions over both. The lookups stay exact whatever the size.
   float scale = 1.0f;
   for (int l = 0; l < options.pyramid_levels; ++l, scale *= 0.5f)
-    field.levels.push_back(buildLevel(edges, layer_masks, width, height, scale, field.num_layers, std::max(1, options.cell_size >> l)));
+    field.levels.push_back(buildLevel(edges, layer_masks, width, height, scale, field.num_layers, bucketSide(options.cell_size, l)));
   return field;
 }
 

@@ -50,7 +50,7 @@ class FieldAgainstBruteForce : public ::testing::TestWithParam<FieldKind> {
 TEST_P(FieldAgainstBruteForce, NearestAndAnyWithinAreExactAtEveryLevelAndLayer) {
   const EdgeSet edges = randomEdges(600, width, height, classes, 42);
   FieldOptions options = kindOptions();
-  options.pyramid_levels = 3;
+  options.pyramid_levels = 4;
   options.orientation_bins = 8;
   options.truncation_radius = 25.0f;
   options.cell_size = 6;
@@ -58,8 +58,9 @@ TEST_P(FieldAgainstBruteForce, NearestAndAnyWithinAreExactAtEveryLevelAndLayer) 
   const NearestNeighborFieldView field = data.view();
   ASSERT_EQ(field.validate(), "");
   // Coarser levels get smaller buckets (their edges are denser per pixel); the answers stay exact.
-  EXPECT_EQ(field.levels[1].cell_size, 3);
-  EXPECT_EQ(field.levels[2].cell_size, 1);
+  EXPECT_EQ(field.levels[1].cell_size, 6);
+  EXPECT_EQ(field.levels[2].cell_size, 3);
+  EXPECT_EQ(field.levels[3].cell_size, 2);
 
   std::mt19937 rng(7);
   int found = 0, checked = 0;
