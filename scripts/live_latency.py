@@ -125,7 +125,7 @@ def main():
     args = parser.parse_args()
     try:
         result = analyse(args.bag, args.rate, args.camera_info, args.odometry, args.skip)
-    except (ValueError, rosbag.ROSBagException) as error:
+    except (OSError, ValueError, rosbag.ROSBagException) as error:
         print("live_latency: %s" % error, file=sys.stderr)
         return 1
     result["label"] = args.label
