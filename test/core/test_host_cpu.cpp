@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <thread>
 
 #include "semantic_edge_vo/host_cpu.h"
 
@@ -50,6 +51,9 @@ TEST(HostCpu, ProcessCpuTimeGrowsWithWorkNotWithSleep) {
   for (int i = 0; i < 20000000; ++i) sink = sink + 1e-9 * i;
   const double worked = processCpuSeconds() - start;
   EXPECT_GT(worked, 0.0);
+  const double before_sleep = processCpuSeconds();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_LT(processCpuSeconds() - before_sleep, 0.05) << "a sleeping process uses no CPU time";
   HostCpuTimes now;
   // On Linux (where these tests run) /proc/stat is always there.
   EXPECT_TRUE(readHostCpuTimes(&now));
