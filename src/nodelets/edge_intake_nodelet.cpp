@@ -123,12 +123,15 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
                 " bytes do not hold a " + std::to_string(image.width) + "x" + std::to_string(image.height) + " " + image.encoding + " image";
       return "malformed_image";
     }
-    if (info.width != image.width || info.height != image.height) {
-      *detail = "camera_info is " + std::to_string(info.width) + "x" + std::to_string(info.height) + ", image is " +
-                std::to_string(image.width) + "x" + std::to_string(image.height);
+    const PinholeCamera camera = cameraFromInfo(info);
+    if (camera.width != static_cast<int>(image.width) || camera.height != static_cast<int>(image.height)) {
+      *detail = "camera_info describes a " + std::to_string(camera.width) + "x" + std::to_string(camera.height) + " image (" +
+                std::to_string(info.width) + "x" + std::to_string(info.height) + ", roi " + std::to_string(info.roi.width) + "x" +
+                std::to_string(info.roi.height) + ", binning " + std::to_string(info.binning_x) + "x" + std::to_string(info.binning_y) +
+                "), image is " + std::to_string(image.width) + "x" + std::to_string(image.height);
       return "size_mismatch";
     }
-    const std::string camera_error = cameraFromInfo(info).validate();
+    const std::string camera_error = camera.validate();
     if (!camera_error.empty()) {
       *detail = "camera_info intrinsics (P, or K where P is unset): " + camera_error;
       return "invalid_camera_info";

@@ -1,5 +1,7 @@
 #include "semantic_edge_vo/ros/conversions.h"
 
+#include <algorithm>
+
 #include <tf2_eigen/tf2_eigen.h>
 
 namespace semantic_edge_vo {
@@ -22,13 +24,19 @@ PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info) {
   // and rectification (image_proc) moves the principal point and scales the focal length. Drivers
   // that leave P unset (all zero) give K.
   const bool has_projection = info.P[0] != 0.0 || info.P[5] != 0.0;
+  // The calibration is of the full sensor; a binned image or a region of interest of it
+  // (REP-104) scales and shifts the intrinsics as image_geometry's camera model does. Binning 0
+  // means 1, an all-zero ROI the full image.
+  const double bin_x = std::max(1u, info.binning_x), bin_y = std::max(1u, info.binning_y);
+  const bool full = info.roi.width == 0 || info.roi.height == 0;
+  const double x_offset = full ? 0.0 : info.roi.x_offset, y_offset = full ? 0.0 : info.roi.y_offset;
   PinholeCamera camera;
-  camera.fx = has_projection ? info.P[0] : info.K[0];
-  camera.fy = has_projection ? info.P[5] : info.K[4];
-  camera.cx = has_projection ? info.P[2] : info.K[2];
-  camera.cy = has_projection ? info.P[6] : info.K[5];
-  camera.width = static_cast<int>(info.width);
-  camera.height = static_cast<int>(info.height);
+  camera.fx = (has_projection ? info.P[0] : info.K[0]) / bin_x;
+  camera.fy = (has_projection ? info.P[5] : info.K[4]) / bin_y;
+  camera.cx = ((has_projection ? info.P[2] : info.K[2]) - x_offset) / bin_x;
+  camera.cy = ((has_projection ? info.P[6] : info.K[5]) - y_offset) / bin_y;
+  camera.width = static_cast<int>((full ? info.width : info.roi.width) / static_cast<std::uint32_t>(bin_x));
+  camera.height = static_cast<int>((full ? info.height : info.roi.height) / static_cast<std::uint32_t>(bin_y));
   return camera;
 }
 

@@ -78,10 +78,13 @@ class BadInput : public ::testing::Test {
   }
   ros::Time nextStamp() { return stamp_ += ros::Duration(0.1); }
 
-  /// Sends a good frame and waits for its tracking status.
-  bool goodFrameFlows() {
+  /// Sends a good frame (its camera_info described otherwise by `describe`, when given) and waits
+  /// for its tracking status.
+  bool goodFrameFlows(const std::function<void(Frame*)>& describe = nullptr) {
     const ros::Time stamp = nextStamp();
-    publish(goodFrame(stamp, ++index_));
+    Frame frame = goodFrame(stamp, ++index_);
+    if (describe) describe(&frame);
+    publish(frame);
     const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(5.0);
     while (ros::WallTime::now() < deadline) {
       {
@@ -163,6 +166,15 @@ TEST_F(BadInput, EachIsRefusedByNameAndGoodFramesStillFlow) {
     EXPECT_TRUE(errorLogged(c.reason)) << "no named error for " << c.reason;
     EXPECT_TRUE(goodFrameFlows()) << "good frames stopped flowing after " << c.reason;
   }
+
+  // Not bad: a camera that bins 2x2 calibrated at full resolution (REP-104) describes this image too.
+  EXPECT_TRUE(goodFrameFlows([](Frame* f) {
+    f->info.width = 2 * kWidth;
+    f->info.height = 2 * kHeight;
+    f->info.binning_x = f->info.binning_y = 2;
+    f->info.K = {600, 0, 320, 0, 600, 240, 0, 0, 1};
+    f->info.P = {600, 0, 320, 0, 0, 600, 240, 0, 0, 0, 1, 0};
+  })) << "a binned camera's frame was refused";
 
   // Stamps going backwards: a frame older than the last accepted one.
   publish(goodFrame(stamp_ - ros::Duration(0.05), ++index_));

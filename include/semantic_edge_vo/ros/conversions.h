@@ -17,8 +17,9 @@ namespace semantic_edge_vo {
 /// A complete CameraInfo of a rectified pinhole camera (K, P, R identity, D zero, plumb_bob).
 sensor_msgs::CameraInfo cameraInfoOf(const PinholeCamera& camera, const std::string& frame_id);
 
-/// Intrinsics of a rectified image from its CameraInfo: P's, or K's when P is unset (all zero).
-/// Check the result with validate().
+/// Intrinsics of a rectified image from its CameraInfo: P's, or K's when P is unset (all zero),
+/// scaled by the binning and shifted by the region of interest (the image's size is the ROI's, or
+/// the calibration's, divided by the binning). Check the result with validate().
 PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info);
 
 /// Views of the frame's edge arrays (no copy; the message must outlive the view).

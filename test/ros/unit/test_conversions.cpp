@@ -58,6 +58,28 @@ TEST(Conversions, CameraFromInfoAndPoseRoundTrip) {
   EXPECT_DOUBLE_EQ(rectified.cx, 615.5);
   EXPECT_DOUBLE_EQ(rectified.cy, 183.25);
 
+  // A 2x2-binned region of interest of that sensor: REP-104 scales and shifts the intrinsics
+  // (as image_geometry's camera model), and the image is the region's size over the binning.
+  info.binning_x = info.binning_y = 2;
+  info.roi.x_offset = 100;
+  info.roi.y_offset = 40;
+  info.roi.width = 1000;
+  info.roi.height = 300;
+  const PinholeCamera binned = cameraFromInfo(info);
+  EXPECT_DOUBLE_EQ(binned.fx, 345.0);
+  EXPECT_DOUBLE_EQ(binned.fy, 345.0);
+  EXPECT_DOUBLE_EQ(binned.cx, (615.5 - 100.0) / 2.0);
+  EXPECT_DOUBLE_EQ(binned.cy, (183.25 - 40.0) / 2.0);
+  EXPECT_EQ(binned.width, 500);
+  EXPECT_EQ(binned.height, 150);
+  info.roi = sensor_msgs::RegionOfInterest();  // binning alone: the whole sensor, halved
+  info.binning_y = 0;                          // 0 is "no binning", as 1
+  const PinholeCamera halved = cameraFromInfo(info);
+  EXPECT_EQ(halved.width, 620);
+  EXPECT_EQ(halved.height, 376);
+  EXPECT_DOUBLE_EQ(halved.cx, 615.5 / 2.0);
+  EXPECT_DOUBLE_EQ(halved.fy, 690.0);
+
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.rotate(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()));
   pose.translation() << 1, -2, 3;

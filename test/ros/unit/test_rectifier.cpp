@@ -104,6 +104,18 @@ TEST(Rectifier, RefusesWhatItCannotModel) {
   info = distortedCamera();
   info.K.fill(0.0);
   EXPECT_NE(rectifier.prepare(info), "");
+  info = distortedCamera();
+  info.binning_x = info.binning_y = 2;  // the maps would be the full sensor's
+  EXPECT_NE(rectifier.prepare(info).find("image_proc"), std::string::npos);
+  info = distortedCamera();
+  info.roi.x_offset = 16;
+  info.roi.width = kWidth / 2;
+  info.roi.height = kHeight / 2;
+  EXPECT_NE(rectifier.prepare(info).find("image_proc"), std::string::npos);
+  info.roi.x_offset = 0;
+  info.roi.width = kWidth;  // a region of interest that is the whole image is no region
+  info.roi.height = kHeight;
+  EXPECT_EQ(rectifier.prepare(info), "");
 }
 
 }  // namespace
