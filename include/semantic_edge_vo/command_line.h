@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <map>
 #include <string>
 
@@ -12,9 +13,11 @@ std::string parseFlags(int argc, char** argv, const std::map<std::string, std::s
                        const std::map<std::string, bool*>& switches);
 
 /// Converts the value of `flag` (the text given to it; empty: `value` left as it is): all of it must
-/// be a whole number.
+/// be a number of the value's type (whole, not negative for the unsigned seeds; finite for reals).
 /// @return "" or what is wrong, e.g. "--runs takes a whole number (got '3x')"
-std::string parseInt(const std::string& flag, const std::string& text, int* value);
+std::string parseNumber(const std::string& flag, const std::string& text, int* value);
+std::string parseNumber(const std::string& flag, const std::string& text, std::uint64_t* value);
+std::string parseNumber(const std::string& flag, const std::string& text, double* value);
 
 /// Prints `usage` to stdout when the only argument is --help or -h: true then (the tool exits 0).
 bool printUsageIfAsked(int argc, char** argv, const char* usage);

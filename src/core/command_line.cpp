@@ -1,5 +1,7 @@
 #include "semantic_edge_vo/command_line.h"
 
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -21,18 +23,44 @@ std::string parseFlags(int argc, char** argv, const std::map<std::string, std::s
   return "";
 }
 
-std::string parseInt(const std::string& flag, const std::string& text, int* value) {
+namespace {
+
+/// `convert` reads a number from the text and says how many characters it used (the std::sto*
+/// family); the whole text must be used.
+template <typename T, typename Convert>
+std::string convertAll(const std::string& flag, const std::string& text, const char* kind, Convert convert, T* value) {
   if (text.empty()) return "";
   std::size_t used = 0;
   try {
-    const int parsed = std::stoi(text, &used);
+    const T parsed = convert(text, &used);
     if (used == text.size()) {
       *value = parsed;
       return "";
     }
   } catch (const std::exception&) {  // not a number, or out of range
   }
-  return flag + " takes a whole number (got '" + text + "')";
+  return flag + " takes " + kind + " (got '" + text + "')";
+}
+
+}  // namespace
+
+std::string parseNumber(const std::string& flag, const std::string& text, int* value) {
+  return convertAll(flag, text, "a whole number", [](const std::string& t, std::size_t* used) { return std::stoi(t, used); }, value);
+}
+
+std::string parseNumber(const std::string& flag, const std::string& text, std::uint64_t* value) {
+  // stoull reads "-1" as the largest value: a seed starts with a digit.
+  if (!text.empty() && !std::isdigit(static_cast<unsigned char>(text[0]))) return flag + " takes a whole number >= 0 (got '" + text + "')";
+  return convertAll(flag, text, "a whole number >= 0", [](const std::string& t, std::size_t* used) { return std::stoull(t, used); }, value);
+}
+
+std::string parseNumber(const std::string& flag, const std::string& text, double* value) {
+  double parsed = 0.0;
+  const std::string error = convertAll(flag, text, "a number", [](const std::string& t, std::size_t* used) { return std::stod(t, used); }, &parsed);
+  if (!error.empty() || text.empty()) return error;
+  if (!std::isfinite(parsed)) return flag + " takes a finite number (got '" + text + "')";  // stod reads "inf" and "nan"
+  *value = parsed;
+  return "";
 }
 
 bool printUsageIfAsked(int argc, char** argv, const char* usage) {

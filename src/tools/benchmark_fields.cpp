@@ -50,10 +50,10 @@ int main(int argc, char** argv) {
                                  {{"--image", &image_path}, {"--classes", &classes_text}, {"--levels", &levels_text},
                                   {"--runs", &runs_text}, {"--cell", &cell_text}},
                                  {});
-  if (error.empty()) error = parseInt("--classes", classes_text, &classes);
-  if (error.empty()) error = parseInt("--levels", levels_text, &levels);
-  if (error.empty()) error = parseInt("--runs", runs_text, &runs);
-  if (error.empty()) error = parseInt("--cell", cell_text, &cell_size);
+  if (error.empty()) error = parseNumber("--classes", classes_text, &classes);
+  if (error.empty()) error = parseNumber("--levels", levels_text, &levels);
+  if (error.empty()) error = parseNumber("--runs", runs_text, &runs);
+  if (error.empty()) error = parseNumber("--cell", cell_text, &cell_size);
   if (!error.empty()) {
     std::fprintf(stderr, "benchmark_fields: %s\n%s", error.c_str(), kUsage);
     return 2;

@@ -129,8 +129,8 @@ int main(int argc, char** argv) {
                                  {{"--image", &image_path}, {"--segmenter-model", &model_path}, {"--runs", &runs_text},
                                   {"--segmenter-runs", &segmenter_runs_text}},
                                  {});
-  if (error.empty()) error = parseInt("--runs", runs_text, &runs);
-  if (error.empty()) error = parseInt("--segmenter-runs", segmenter_runs_text, &segmenter_runs);
+  if (error.empty()) error = parseNumber("--runs", runs_text, &runs);
+  if (error.empty()) error = parseNumber("--segmenter-runs", segmenter_runs_text, &segmenter_runs);
   if (!error.empty()) {
     std::fprintf(stderr, "benchmark_intake: %s\n%s", error.c_str(), kUsage);
     return 2;

@@ -10,6 +10,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/command_line.h"
 #include "semantic_edge_vo/synthetic/sequence_formats.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
 
@@ -26,23 +27,27 @@ double cpuSeconds() {
 
 }  // namespace
 
+const char* const kUsage = "usage: benchmark_synthetic [--scene city|village|highway] [--frames N] [--seed S] [--no-semantics]\n";
+
 int main(int argc, char** argv) {
+  namespace sevo = semantic_edge_vo;
+  if (sevo::printUsageIfAsked(argc, argv, kUsage)) return 0;
   SceneType scene = SceneType::kCity;
   int frames = 50;
   std::uint64_t seed = 1;
-  bool semantics = true;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (flag == "--scene" && has_value && parseSceneType(argv[i + 1], &scene)) ++i;
-    else if (flag == "--frames" && has_value) frames = std::max(1, std::atoi(argv[++i]));
-    else if (flag == "--seed" && has_value) seed = std::strtoull(argv[++i], nullptr, 10);
-    else if (flag == "--no-semantics") semantics = false;
-    else {
-      std::cerr << "usage: benchmark_synthetic [--scene city|village|highway] [--frames N] [--seed S] [--no-semantics]\n";
-      return 2;
-    }
+  std::string scene_text, frames_text, seed_text;
+  bool no_semantics = false;
+  std::string error = sevo::parseFlags(argc, argv, {{"--scene", &scene_text}, {"--frames", &frames_text}, {"--seed", &seed_text}},
+                                       {{"--no-semantics", &no_semantics}});
+  if (error.empty() && !scene_text.empty() && !parseSceneType(scene_text, &scene)) error = "--scene takes city, village or highway";
+  if (error.empty()) error = sevo::parseNumber("--frames", frames_text, &frames);
+  if (error.empty() && frames < 1) error = "--frames takes a positive count";
+  if (error.empty()) error = sevo::parseNumber("--seed", seed_text, &seed);
+  if (!error.empty()) {
+    std::cerr << "benchmark_synthetic: " << error << "\n" << kUsage;
+    return 2;
   }
+  const bool semantics = !no_semantics;
   cv::setNumThreads(1);  // one core, as the requirement states it
   SyntheticSequenceOptions options = SyntheticSequenceOptions::forScene(scene, seed);
   options.semantics = semantics;

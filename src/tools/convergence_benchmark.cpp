@@ -44,27 +44,19 @@ bool parse(int argc, char** argv, Arguments* args, std::string* error) {
       return false;
     }
     const std::string value = argv[++i];
-    try {
-      if (flag == "--output") args->output = value;
-      else if (flag == "--scene") {
-        if (!synthetic::parseSceneType(value, &args->scene)) {
-          *error = "--scene must be city, village or highway (got '" + value + "')";
-          return false;
-        }
-      } else if (flag == "--pairs") args->pairs = std::stoi(value);
-      else if (flag == "--trials") args->trials = std::stoi(value);
-      else if (flag == "--seed") args->seed = std::stoull(value);
-      else if (flag == "--reference-edges") args->reference_edges = std::stoi(value);
-      else if (flag == "--truncation") args->truncation = std::stof(value);
-      else if (synthetic::parseNoiseFlag(flag, value, &args->noise)) continue;
-      else {
-        *error = "unknown flag " + flag;
-        return false;
-      }
-    } catch (const std::exception&) {
-      *error = "bad value '" + value + "' for " + flag;
-      return false;
-    }
+    if (flag == "--output") args->output = value;
+    else if (flag == "--scene") {
+      if (!synthetic::parseSceneType(value, &args->scene)) *error = "--scene must be city, village or highway (got '" + value + "')";
+    } else if (flag == "--pairs") *error = parseNumber(flag, value, &args->pairs);
+    else if (flag == "--trials") *error = parseNumber(flag, value, &args->trials);
+    else if (flag == "--seed") *error = parseNumber(flag, value, &args->seed);
+    else if (flag == "--reference-edges") *error = parseNumber(flag, value, &args->reference_edges);
+    else if (flag == "--truncation") {
+      double truncation = args->truncation;
+      *error = parseNumber(flag, value, &truncation);
+      args->truncation = static_cast<float>(truncation);
+    } else if (!synthetic::parseNoiseFlag(flag, value, &args->noise, error)) *error = "unknown flag " + flag;
+    if (!error->empty()) return false;
   }
   if (args->output.empty()) *error = "--output DIR is required";
   else if (args->pairs < 1 || args->trials < 1 || args->reference_edges < 10) *error = "need --pairs >= 1, --trials >= 1, --reference-edges >= 10";

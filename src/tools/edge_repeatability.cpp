@@ -50,30 +50,19 @@ bool parse(int argc, char** argv, Arguments* args, std::string* error) {
       return false;
     }
     const std::string value = argv[++i];
-    try {
-      if (flag == "--output") args->output = value;
-      else if (flag == "--scene") {
-        synthetic::SceneType scene;
-        if (value == "all") args->scenes = {synthetic::SceneType::kCity, synthetic::SceneType::kVillage, synthetic::SceneType::kHighway};
-        else if (synthetic::parseSceneType(value, &scene)) args->scenes = {scene};
-        else {
-          *error = "--scene must be city, village, highway or all (got '" + value + "')";
-          return false;
-        }
-      } else if (flag == "--pairs") args->pairs = std::stoi(value);
-      else if (flag == "--sample") args->repeatability.sample_size = std::stoi(value);
-      else if (flag == "--frame-gap") args->frame_gap = std::stoi(value);
-      else if (flag == "--radius") args->repeatability.radius = std::stod(value);
-      else if (flag == "--seed") args->repeatability.seed = std::stoull(value);
-      else if (synthetic::parseNoiseFlag(flag, value, &args->noise)) continue;
-      else {
-        *error = "unknown flag " + flag;
-        return false;
-      }
-    } catch (const std::exception&) {
-      *error = "bad value '" + value + "' for " + flag;
-      return false;
-    }
+    if (flag == "--output") args->output = value;
+    else if (flag == "--scene") {
+      synthetic::SceneType scene;
+      if (value == "all") args->scenes = {synthetic::SceneType::kCity, synthetic::SceneType::kVillage, synthetic::SceneType::kHighway};
+      else if (synthetic::parseSceneType(value, &scene)) args->scenes = {scene};
+      else *error = "--scene must be city, village, highway or all (got '" + value + "')";
+    } else if (flag == "--pairs") *error = parseNumber(flag, value, &args->pairs);
+    else if (flag == "--sample") *error = parseNumber(flag, value, &args->repeatability.sample_size);
+    else if (flag == "--frame-gap") *error = parseNumber(flag, value, &args->frame_gap);
+    else if (flag == "--radius") *error = parseNumber(flag, value, &args->repeatability.radius);
+    else if (flag == "--seed") *error = parseNumber(flag, value, &args->repeatability.seed);
+    else if (!synthetic::parseNoiseFlag(flag, value, &args->noise, error)) *error = "unknown flag " + flag;
+    if (!error->empty()) return false;
   }
   if (args->output.empty()) *error = "--output DIR is required";
   else if (args->pairs < 1 || args->frame_gap < 1 || args->frame_gap > 20) *error = "need --pairs >= 1 and --frame-gap in [1, 20]";

@@ -11,6 +11,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "semantic_edge_vo/command_line.h"
 #include "semantic_edge_vo/evaluation_report.h"
 #include "semantic_edge_vo/ros/bag_trajectory.h"
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
@@ -49,19 +50,6 @@ struct Arguments {
   sevo::TrajectoryEvaluationOptions options;
 };
 
-bool parseNumber(const std::string& text, double* value) {
-  char* end = nullptr;
-  *value = std::strtod(text.c_str(), &end);
-  return !text.empty() && *end == '\0';
-}
-
-bool parseInteger(const std::string& text, int* value) {
-  double number = 0.0;
-  if (!parseNumber(text, &number) || number != static_cast<int>(number)) return false;
-  *value = static_cast<int>(number);
-  return true;
-}
-
 /// Empty on success, otherwise what is wrong with the command line.
 std::string parseArguments(int argc, char** argv, Arguments* args) {
   std::vector<std::string> positional;
@@ -73,21 +61,28 @@ std::string parseArguments(int argc, char** argv, Arguments* args) {
     }
     if (i + 1 >= argc) return flag + " needs a value";
     const std::string value = argv[++i];
-    bool ok = true;
-    if (flag == "--format") args->format = value, ok = value == "auto" || value == "kitti" || value == "tum";
+    const auto oneOf = [&](std::initializer_list<const char*> choices) {
+      for (const char* choice : choices)
+        if (value == choice) return std::string();
+      return "bad value '" + value + "' for " + flag;
+    };
+    std::string error;
+    if (flag == "--format") args->format = value, error = oneOf({"auto", "kitti", "tum"});
     else if (flag == "--output") args->output = value;
     else if (flag == "--bag-topic") args->bag_topic = value;
-    else if (flag == "--bag-extrinsic") args->bag_extrinsic = value, ok = value == "optical" || value == "identity";
+    else if (flag == "--bag-extrinsic") args->bag_extrinsic = value, error = oneOf({"optical", "identity"});
     else if (flag == "--gt-times") args->gt_times = value;
-    else if (flag == "--associate") args->associate = value, ok = value == "auto" || value == "index" || value == "stamps";
-    else if (flag == "--max-time-diff") ok = parseNumber(value, &args->max_time_diff);
-    else if (flag == "--est-time-offset") ok = parseNumber(value, &args->est_time_offset);
-    else if (flag == "--discard") ok = parseInteger(value, &args->options.paper_ate.discard_first_poses);
-    else if (flag == "--segment-frames") ok = parseInteger(value, &args->options.paper_ate.segment_frames);
-    else if (flag == "--rpe-delta") ok = parseInteger(value, &args->options.rpe_delta_frames);
-    else if (flag == "--first-frame") ok = parseInteger(value, &args->first_frame) && args->first_frame >= 0;
-    else return "unknown option " + flag;
-    if (!ok) return "bad value '" + value + "' for " + flag;
+    else if (flag == "--associate") args->associate = value, error = oneOf({"auto", "index", "stamps"});
+    else if (flag == "--max-time-diff") error = sevo::parseNumber(flag, value, &args->max_time_diff);
+    else if (flag == "--est-time-offset") error = sevo::parseNumber(flag, value, &args->est_time_offset);
+    else if (flag == "--discard") error = sevo::parseNumber(flag, value, &args->options.paper_ate.discard_first_poses);
+    else if (flag == "--segment-frames") error = sevo::parseNumber(flag, value, &args->options.paper_ate.segment_frames);
+    else if (flag == "--rpe-delta") error = sevo::parseNumber(flag, value, &args->options.rpe_delta_frames);
+    else if (flag == "--first-frame") {
+      error = sevo::parseNumber(flag, value, &args->first_frame);
+      if (error.empty() && args->first_frame < 0) error = "--first-frame takes a frame index >= 0 (got '" + value + "')";
+    } else return "unknown option " + flag;
+    if (!error.empty()) return error;
   }
   if (positional.size() != 2) return "expected GT and EST, got " + std::to_string(positional.size()) + " file name(s)";
   args->gt_path = positional[0];

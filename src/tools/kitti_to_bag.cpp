@@ -46,11 +46,8 @@ std::string parseArguments(int argc, char** argv, sevo::KittiBagOptions* options
     if (camera != "0" && camera != "2") return "--camera takes 0 or 2";
     options->camera = std::stoi(camera);
   }
-  if (!start_time.empty()) {
-    char* end = nullptr;
-    options->start_time = std::strtod(start_time.c_str(), &end);
-    if (*end != '\0' || options->start_time <= 0.0) return "--start-time takes a positive time, s";
-  }
+  if (const std::string bad = sevo::parseNumber("--start-time", start_time, &options->start_time); !bad.empty()) return bad;
+  if (!(options->start_time > 0.0)) return "--start-time takes a positive time, s";
   if (options->sequence.empty()) return "--sequence is required";
   if (options->output.empty()) return "--output is required";
   return "";

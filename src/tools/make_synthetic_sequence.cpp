@@ -8,6 +8,7 @@
 #include <condition_variable>
 #include <deque>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -22,6 +23,8 @@
 namespace {
 
 using semantic_edge_vo::ProgressBar;
+using semantic_edge_vo::parseFlags;
+using semantic_edge_vo::parseNumber;
 using semantic_edge_vo::SequenceBagWriter;
 using namespace semantic_edge_vo::synthetic;
 
@@ -40,58 +43,25 @@ struct Arguments {
 };
 
 bool parse(int argc, char** argv, Arguments* args, std::string* error) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
-    auto number = [&](double* out) {
-      const char* text = value();
-      if (!text) return false;
-      try {
-        *out = std::stod(text);
-      } catch (const std::exception&) {
-        return false;
-      }
-      return true;
-    };
-    double x = 0.0;
-    if (flag == "--scene") {
-      const char* text = value();
-      if (!text || !parseSceneType(text, &args->scene)) return *error = "--scene takes city, village or highway", false;
-    } else if (flag == "--frames") {
-      if (!number(&x) || x < 1 || x > 1e7) return *error = "--frames takes a positive count", false;
-      args->frames = static_cast<int>(x);
-    } else if (flag == "--seed") {
-      if (!number(&x) || x < 0) return *error = "--seed takes a non-negative integer", false;
-      args->seed = static_cast<std::uint64_t>(x);
-    } else if (flag == "--output") {
-      const char* text = value();
-      if (!text) return *error = "--output takes a folder", false;
-      args->output = text;
-    } else if (flag == "--bag") {
-      const char* text = value();
-      if (!text) return *error = "--bag takes a file name", false;
-      args->bag = text;
-    } else if (flag == "--label-confusion") {
-      if (!number(&args->noise.label_confusion)) return *error = "--label-confusion takes a number", false;
-    } else if (flag == "--edge-blur") {
-      if (!number(&args->noise.edge_blur)) return *error = "--edge-blur takes a number", false;
-    } else if (flag == "--missed-edges") {
-      if (!number(&args->noise.missed_edges)) return *error = "--missed-edges takes a number", false;
-    } else if (flag == "--spurious-edges") {
-      if (!number(&args->noise.spurious_edges)) return *error = "--spurious-edges takes a number", false;
-    } else if (flag == "--no-semantics") {
-      args->semantics = false;
-    } else if (flag == "--no-traffic") {
-      args->traffic = false;
-    } else if (flag == "--quiet") {
-      args->quiet = true;
-    } else {
-      return *error = "unknown argument '" + flag + "'", false;
-    }
-  }
-  if (args->frames <= 0) return *error = "--frames is required", false;
-  if (args->output.empty()) return *error = "--output is required", false;
-  return true;
+  std::string scene, frames, seed;
+  std::map<std::string, std::string> noise = {{"--label-confusion", ""}, {"--edge-blur", ""}, {"--missed-edges", ""}, {"--spurious-edges", ""}};
+  std::map<std::string, std::string*> values = {{"--scene", &scene}, {"--frames", &frames}, {"--seed", &seed}, {"--output", &args->output},
+                                                {"--bag", &args->bag}};
+  for (auto& [flag, text] : noise) values[flag] = &text;
+  bool no_semantics = false, no_traffic = false;
+  *error = parseFlags(argc, argv, values, {{"--no-semantics", &no_semantics}, {"--no-traffic", &no_traffic}, {"--quiet", &args->quiet}});
+  args->semantics = !no_semantics;
+  args->traffic = !no_traffic;
+  if (error->empty() && !scene.empty() && !parseSceneType(scene, &args->scene)) *error = "--scene takes city, village or highway";
+  if (error->empty()) *error = parseNumber("--frames", frames, &args->frames);
+  if (error->empty()) *error = parseNumber("--seed", seed, &args->seed);
+  for (const auto& [flag, text] : noise)
+    if (error->empty() && !text.empty()) parseNoiseFlag(flag, text, &args->noise, error);
+  if (!error->empty()) return false;
+  if (frames.empty()) *error = "--frames is required";
+  else if (args->frames < 1 || args->frames > 10000000) *error = "--frames takes a positive count";
+  else if (args->output.empty()) *error = "--output is required";
+  return error->empty();
 }
 
 /// Frames rendered but not yet written, bounded so memory stays small.

@@ -38,7 +38,7 @@ std::string parse(int argc, char** argv, Arguments* args) {
                                         {"--config", &args->config}, {"--frames", &args->frames_text}},
                                        {{"--quiet", &args->quiet}});
   if (!error.empty()) return error;
-  if (const std::string bad = parseInt("--frames", args->frames_text, &args->frames); !bad.empty()) return bad;
+  if (const std::string bad = parseNumber("--frames", args->frames_text, &args->frames); !bad.empty()) return bad;
   if (args->frames < 0) return "--frames takes a count >= 0 (0: all)";
   if (args->sequence.empty() || args->output.empty()) return "--sequence DIR and --output OUT are required";
   return {};

@@ -1,3 +1,4 @@
+#include <cstdint>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -36,14 +37,33 @@ TEST(CommandLine, UnknownFlagsAndMissingValuesAreNamed) {
 
 TEST(CommandLine, NumbersMustBeWholeValues) {
   int count = 7;
-  EXPECT_EQ(parseInt("--runs", "", &count), "");
+  EXPECT_EQ(parseNumber("--runs", "", &count), "");
   EXPECT_EQ(count, 7);  // not given: the default stays
-  EXPECT_EQ(parseInt("--runs", "12", &count), "");
+  EXPECT_EQ(parseNumber("--runs", "12", &count), "");
   EXPECT_EQ(count, 12);
-  EXPECT_EQ(parseInt("--runs", "3x", &count), "--runs takes a whole number (got '3x')");
-  EXPECT_EQ(parseInt("--runs", "abc", &count), "--runs takes a whole number (got 'abc')");
-  EXPECT_NE(parseInt("--runs", "99999999999", &count), "");
+  EXPECT_EQ(parseNumber("--runs", "3x", &count), "--runs takes a whole number (got '3x')");
+  EXPECT_EQ(parseNumber("--runs", "abc", &count), "--runs takes a whole number (got 'abc')");
+  EXPECT_NE(parseNumber("--runs", "99999999999", &count), "");
   EXPECT_EQ(count, 12);
+}
+
+TEST(CommandLine, SeedsAndRealsAreWholeNumbersToo) {
+  std::uint64_t seed = 1;
+  EXPECT_EQ(parseNumber("--seed", "18446744073709551615", &seed), "");
+  EXPECT_EQ(seed, 18446744073709551615u);
+  EXPECT_EQ(parseNumber("--seed", "-1", &seed), "--seed takes a whole number >= 0 (got '-1')");  // stoull would wrap it
+  EXPECT_NE(parseNumber("--seed", "1.5", &seed), "");
+  EXPECT_EQ(seed, 18446744073709551615u);
+
+  double radius = 1.5;
+  EXPECT_EQ(parseNumber("--radius", "2.25", &radius), "");
+  EXPECT_EQ(radius, 2.25);
+  EXPECT_EQ(parseNumber("--radius", "1e-3", &radius), "");
+  EXPECT_EQ(radius, 1e-3);
+  EXPECT_EQ(parseNumber("--radius", "0.3x", &radius), "--radius takes a number (got '0.3x')");
+  EXPECT_EQ(parseNumber("--radius", "nan", &radius), "--radius takes a finite number (got 'nan')");
+  EXPECT_NE(parseNumber("--radius", "inf", &radius), "");
+  EXPECT_EQ(radius, 1e-3);
 }
 
 }  // namespace

@@ -25,8 +25,9 @@ struct NetworkNoiseOptions {
 };
 
 /// Reads a command-line noise flag (--label-confusion, --edge-blur, --missed-edges, --spurious-edges)
-/// into `options`; false when `flag` is not one of them. Throws std::invalid_argument on a bad value.
-bool parseNoiseFlag(const std::string& flag, const std::string& value, NetworkNoiseOptions* options);
+/// into `options`; false when `flag` is not one of them. A value that is not a number leaves the
+/// option as it was and says so in `error`.
+bool parseNoiseFlag(const std::string& flag, const std::string& value, NetworkNoiseOptions* options, std::string* error);
 
 /// Applies the noise models in place, deterministically for the seed.
 void applyNetworkNoise(const NetworkNoiseOptions& options, std::uint64_t seed, SemanticNetworkOutput* output);

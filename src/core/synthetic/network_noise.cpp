@@ -6,6 +6,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "semantic_edge_vo/command_line.h"
 #include "semantic_edge_vo/synthetic/noise.h"
 #include "semantic_edge_vo/synthetic/random.h"
 
@@ -128,13 +129,13 @@ std::string NetworkNoiseOptions::validate() const {
   return error.str();
 }
 
-bool parseNoiseFlag(const std::string& flag, const std::string& value, NetworkNoiseOptions* options) {
+bool parseNoiseFlag(const std::string& flag, const std::string& value, NetworkNoiseOptions* options, std::string* error) {
   double* target = flag == "--label-confusion" ? &options->label_confusion
                    : flag == "--edge-blur"     ? &options->edge_blur
                    : flag == "--missed-edges"  ? &options->missed_edges
                    : flag == "--spurious-edges" ? &options->spurious_edges
                                                 : nullptr;
-  if (target) *target = std::stod(value);
+  if (target) *error = parseNumber(flag, value, target);
   return target != nullptr;
 }
 
