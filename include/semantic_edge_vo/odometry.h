@@ -34,6 +34,11 @@ struct OdometryOptions {
   double keyframe_flow = 60.0;         ///< new keyframe when the keyframe points moved this much on average, px
   double keyframe_min_in_view = 0.6;   ///< ... or fewer of them are in view (fraction)
   int keyframe_max_interval = 8;      ///< ... or this many frames passed
+  /// ... but only once the camera has travelled: the median flow of the keyframe points that the
+  /// travel alone causes (their pixels minus where the rotation alone takes them) is at least this,
+  /// px. A keyframe made without parallax measures no depth and would leave tracking without points
+  /// (a car waiting at a light makes one every keyframe_max_interval frames otherwise).
+  double keyframe_min_parallax = 5.0;
   double depth_neighbour_radius = 30.0;  ///< new keyframe points take a prior depth from map points this near, px
   int window_size = 7;                 ///< keyframes kept (the map published to users)
 
@@ -80,6 +85,9 @@ class Odometry {
   std::vector<FramePose> initialize(const std::shared_ptr<const OdometryFrame>& frame);
   void startInitialization(const std::shared_ptr<const OdometryFrame>& frame);
   FramePose track(const std::shared_ptr<const OdometryFrame>& frame);
+  /// Median flow of the keyframe's measured points between where the frame's rotation alone and its
+  /// whole motion take them, px: the parallax a keyframe made from the frame would triangulate with.
+  double travelParallax(const Keyframe& keyframe, const Eigen::Isometry3d& T_frame_kf) const;
   /// Refines the active keyframe's depths with a tracked frame. Returns the frame's edge test (null
   /// without a field), which the frame keeps if it becomes a keyframe.
   std::shared_ptr<const SharedClassEdgeTest> refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf);

@@ -81,6 +81,7 @@ std::string OdometryOptions::validate() const {
   if (error.empty() && (keyframe_max_interval < 1 || window_size < 1 || !(depth_neighbour_radius > 0)))
     error = "keyframe_max_interval and window_size must be >= 1, depth_neighbour_radius > 0 px";
   if (error.empty() && window_delay < 0) error = "window_delay must be >= 0 frames";
+  if (error.empty() && !(keyframe_min_parallax >= 0)) error = "keyframe_min_parallax must be >= 0 px";
   return error;
 }
 
@@ -274,13 +275,27 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
   followCorners(*frame);
   ++frames_since_keyframe_;
   const bool few_in_view = pose.tracking.points_in_view < options_.keyframe_min_in_view * pose.tracking.points;
-  if (pose.tracking.mean_flow > options_.keyframe_flow || few_in_view || frames_since_keyframe_ >= options_.keyframe_max_interval) {
+  const bool wanted =
+      pose.tracking.mean_flow > options_.keyframe_flow || few_in_view || frames_since_keyframe_ >= options_.keyframe_max_interval;
+  if (wanted && travelParallax(*active_, pose.tracking.T_cam_kf) >= options_.keyframe_min_parallax) {
     pose.T_world_cam = makeKeyframe(frame, std::move(frame_edges), pose.T_world_cam, &pose);
     pose.keyframe = true;
   }
   pose.mapping_ms = elapsedMs(mapping_start);
   remember(pose);
   return pose;
+}
+
+double Odometry::travelParallax(const Keyframe& keyframe, const Eigen::Isometry3d& T_frame_kf) const {
+  std::vector<double> flows;
+  for (const MapPoint& point : keyframe.points) {
+    if (!point.hasDepth()) continue;
+    const Eigen::Vector3d p = camera_.backProject(point.u, point.v, 1.0 / point.inverse_depth);
+    const Eigen::Vector3d rotated = T_frame_kf.linear() * p, moved = rotated + T_frame_kf.translation();
+    if (rotated.z() <= 1e-3 || moved.z() <= 1e-3) continue;
+    flows.push_back((camera_.project(moved) - camera_.project(rotated)).norm());
+  }
+  return median(flows);
 }
 
 std::shared_ptr<const SharedClassEdgeTest> Odometry::refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf) {

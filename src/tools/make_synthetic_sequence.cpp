@@ -31,6 +31,7 @@ using namespace semantic_edge_vo::synthetic;
 const char* const kUsage =
     "usage: make_synthetic_sequence --scene city|village|highway --frames N --seed S --output DIR [--bag FILE]\n"
     "         [--label-confusion X] [--edge-blur X] [--missed-edges X] [--spurious-edges X]  (strengths 0..1)\n"
+    "         [--stop-at M] [--stop-for S]  (a stop M metres along the route, standing S s, default 5)\n"
     "         [--no-semantics] [--no-traffic] [--quiet]\n";
 
 struct Arguments {
@@ -39,14 +40,15 @@ struct Arguments {
   std::uint64_t seed = 1;
   std::string output, bag;
   NetworkNoiseOptions noise;
+  double stop_at = -1.0, stop_duration = 5.0;  ///< m, s (EgoMotionOptions)
   bool semantics = true, traffic = true, quiet = false;
 };
 
 bool parse(int argc, char** argv, Arguments* args, std::string* error) {
-  std::string scene, frames, seed;
+  std::string scene, frames, seed, stop_at, stop_duration;
   std::map<std::string, std::string> noise = {{"--label-confusion", ""}, {"--edge-blur", ""}, {"--missed-edges", ""}, {"--spurious-edges", ""}};
   std::map<std::string, std::string*> values = {{"--scene", &scene}, {"--frames", &frames}, {"--seed", &seed}, {"--output", &args->output},
-                                                {"--bag", &args->bag}};
+                                                {"--bag", &args->bag}, {"--stop-at", &stop_at}, {"--stop-for", &stop_duration}};
   for (auto& [flag, text] : noise) values[flag] = &text;
   bool no_semantics = false, no_traffic = false;
   *error = parseFlags(argc, argv, values, {{"--no-semantics", &no_semantics}, {"--no-traffic", &no_traffic}, {"--quiet", &args->quiet}});
@@ -55,6 +57,9 @@ bool parse(int argc, char** argv, Arguments* args, std::string* error) {
   if (error->empty() && !scene.empty() && !parseSceneType(scene, &args->scene)) *error = "--scene takes city, village or highway";
   if (error->empty()) *error = parseNumber("--frames", frames, &args->frames);
   if (error->empty()) *error = parseNumber("--seed", seed, &args->seed);
+  if (error->empty()) *error = parseNumber("--stop-at", stop_at, &args->stop_at);
+  if (error->empty()) *error = parseNumber("--stop-for", stop_duration, &args->stop_duration);
+  if (error->empty() && !stop_at.empty() && args->stop_at < 0.0) *error = "--stop-at takes a distance >= 0, m";
   for (const auto& [flag, text] : noise)
     if (error->empty() && !text.empty()) parseNoiseFlag(flag, text, &args->noise, error);
   if (!error->empty()) return false;
@@ -110,6 +115,8 @@ int main(int argc, char** argv) {
   options.network_noise = args.noise;
   options.semantics = args.semantics;
   options.world.traffic = args.traffic;
+  options.world.ego.stop_at = args.stop_at;
+  options.world.ego.stop_duration = args.stop_duration;
   if (const std::string invalid = options.validate(); !invalid.empty()) {
     std::cerr << "make_synthetic_sequence: " << invalid << "\n";
     return 2;

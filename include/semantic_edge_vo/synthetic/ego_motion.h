@@ -24,6 +24,8 @@ struct EgoMotionOptions {
   double pitch_per_acceleration = 0.004;   ///< nose-down pitch when braking, rad per m/s^2
   double roll_per_acceleration = 0.003;    ///< body roll in turns, rad per m/s^2 of lateral acceleration
   double vibration = 0.0015;               ///< pitch and roll jitter amplitude, rad
+  double stop_at = -1.0;                   ///< route position where the car brakes to a stop (a red light), m; < 0: none
+  double stop_duration = 5.0;              ///< time it stands there, s
 
   std::string validate() const;
 };
@@ -55,6 +57,8 @@ class EgoTrajectory {
   Route* route_;
   std::uint64_t seed_;
   std::vector<EgoState> states_;
+  double standing_since_ = -1.0;  ///< time the car came to its stop; < 0: not yet
+  bool stop_done_ = false;        ///< it stood its time and drives on
 };
 
 }  // namespace synthetic

@@ -20,6 +20,7 @@ std::string EgoMotionOptions::validate() const {
   else if (!(frame_rate > 0.0)) error << "frame_rate must be > 0 Hz (got " << frame_rate << ")";
   else if (!(vibration >= 0.0 && pitch_per_acceleration >= 0.0 && roll_per_acceleration >= 0.0))
     error << "vibration and pitch/roll gains must be >= 0";
+  else if (stop_at >= 0.0 && !(stop_duration > 0.0)) error << "stop_duration must be > 0 s (got " << stop_duration << ")";
   return error.str();
 }
 
@@ -56,9 +57,26 @@ void EgoTrajectory::appendFrame() {
     const int substeps = 10;
     const double dt = 1.0 / (options_.frame_rate * substeps);
     const double start_speed = state.speed;
+    const double start_time = state.time;
     for (int i = 0; i < substeps; ++i) {
-      const double acceleration = std::clamp(0.8 * (targetSpeed(state.s) - state.speed), -options_.max_deceleration,
-                                             options_.max_acceleration);
+      double acceleration = std::clamp(0.8 * (targetSpeed(state.s) - state.speed), -options_.max_deceleration,
+                                       options_.max_acceleration);
+      // A stop: brake at the deceleration that ends at stop_at once the comfortable one (70 % of the
+      // most) would no longer do, stand stop_duration, then drive on as before.
+      const double to_stop = options_.stop_at - state.s;
+      if (options_.stop_at >= 0.0 && !stop_done_) {
+        const double now = start_time + (i + 1) * dt;
+        if (standing_since_ < 0.0 && (to_stop < 0.01 || (to_stop < 1.0 && state.speed < 0.05))) {
+          standing_since_ = now;
+          state.speed = 0.0;
+        }
+        if (standing_since_ >= 0.0) {
+          stop_done_ = now - standing_since_ >= options_.stop_duration;
+          if (!stop_done_) continue;  // standing: no motion this substep
+        } else if (state.speed * state.speed >= 2.0 * 0.7 * options_.max_deceleration * to_stop) {
+          acceleration = -state.speed * state.speed / (2.0 * to_stop);
+        }
+      }
       state.s += dt * (state.speed + 0.5 * acceleration * dt);
       state.speed = std::max(0.0, state.speed + acceleration * dt);
     }

@@ -30,8 +30,11 @@ void writeMetadata(std::ostream& out, const SyntheticSequenceOptions& options, i
       << "frame_rate: " << options.world.ego.frame_rate << "  # Hz\n"
       << "camera: {width: " << options.camera.width << ", height: " << options.camera.height << ", fx: " << options.camera.fx
       << ", fy: " << options.camera.fy << ", cx: " << options.camera.cx << ", cy: " << options.camera.cy << "}\n"
-      << "camera_height: " << options.world.ego.camera_height << "  # m above the road\n"
-      << "depth_scale: " << kDepthScale << "  # depth PNG value / depth_scale = metres; 0 = sky or >= "
+      << "camera_height: " << options.world.ego.camera_height << "  # m above the road\n";
+  if (options.world.ego.stop_at >= 0.0)
+    out << "stop: {at: " << options.world.ego.stop_at << ", duration: " << options.world.ego.stop_duration
+        << "}  # the car brakes to a stop this far along its route, m, and stands this long, s\n";
+  out << "depth_scale: " << kDepthScale << "  # depth PNG value / depth_scale = metres; 0 = sky or >= "
       << kMaxEncodedDepth << " m\n"
       << "semantics: " << (options.semantics ? "true" : "false") << "\n"
       << "network_noise: {label_confusion: " << noise.label_confusion << ", edge_blur: " << noise.edge_blur
