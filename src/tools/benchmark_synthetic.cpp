@@ -18,6 +18,8 @@ using namespace semantic_edge_vo::synthetic;
 
 namespace {
 
+const char* const kUsage = "usage: benchmark_synthetic [--scene city|village|highway] [--frames N] [--seed S] [--no-semantics]\n";
+
 /// CPU time of this thread, s: unlike wall time it does not grow when other processes share the core.
 double cpuSeconds() {
   timespec now{};
@@ -26,8 +28,6 @@ double cpuSeconds() {
 }
 
 }  // namespace
-
-const char* const kUsage = "usage: benchmark_synthetic [--scene city|village|highway] [--frames N] [--seed S] [--no-semantics]\n";
 
 int main(int argc, char** argv) {
   namespace sevo = semantic_edge_vo;
