@@ -138,6 +138,7 @@ class Odometry {
   // The last two final poses (constant-velocity prediction) and whether any exists.
   Eigen::Isometry3d T_world_last_ = Eigen::Isometry3d::Identity(), T_world_before_ = Eigen::Isometry3d::Identity();
   int poses_seen_ = 0;
+  std::deque<Vector6d> recent_motions_;  ///< frame-to-frame motions of the last trusted frames (guesses after a stop)
   double last_inlier_ratio_ = 1.0;  ///< photometric inlier ratio of the last tracked frame (1: none)
 };
 

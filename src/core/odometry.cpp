@@ -244,6 +244,13 @@ std::vector<Eigen::Isometry3d> Odometry::guesses(const Keyframe& keyframe) const
     // Constant velocity first, then no motion, half and double the velocity.
     world_poses = {T_world_last_ * se3Exp(velocity), T_world_last_, T_world_last_ * se3Exp(0.5 * velocity),
                    T_world_last_ * se3Exp(2.0 * velocity)};
+    // Standing, or nearly: the guesses above all say "no motion". A car drives off the way it came,
+    // so the fastest recent motion is one more (a start that the frames caught late, or dropped).
+    const auto fastest = std::max_element(recent_motions_.begin(), recent_motions_.end(), [](const Vector6d& a, const Vector6d& b) {
+      return a.head<3>().norm() < b.head<3>().norm();
+    });
+    if (fastest != recent_motions_.end() && velocity.head<3>().norm() < 0.1 * fastest->head<3>().norm())
+      world_poses.push_back(T_world_last_ * se3Exp(*fastest));
   }
   std::vector<Eigen::Isometry3d> guesses;
   for (const Eigen::Isometry3d& T_world_cam : world_poses) guesses.push_back(T_world_cam.inverse() * keyframe.T_world_cam);
@@ -399,9 +406,13 @@ void Odometry::followCorners(const OdometryFrame& frame) {
 }
 
 void Odometry::remember(const FramePose& pose) {
+  constexpr std::size_t kRecentMotions = 100;  // 10 s at 10 Hz: the speed before a stop at a light
   T_world_before_ = T_world_last_;
   T_world_last_ = orthonormalized(pose.T_world_cam);
   ++poses_seen_;
+  if (!pose.trusted || poses_seen_ < 2) return;
+  recent_motions_.push_back(se3Log(T_world_before_.inverse() * T_world_last_));
+  if (recent_motions_.size() > kRecentMotions) recent_motions_.pop_front();
 }
 
 }  // namespace semantic_edge_vo
