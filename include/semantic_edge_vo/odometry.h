@@ -34,10 +34,10 @@ struct OdometryOptions {
   double keyframe_flow = 60.0;         ///< new keyframe when the keyframe points moved this much on average, px
   double keyframe_min_in_view = 0.6;   ///< ... or fewer of them are in view (fraction)
   int keyframe_max_interval = 8;      ///< ... or this many frames passed
-  /// ... but only once the camera has travelled: the median flow of the keyframe points that the
-  /// travel alone causes (their pixels minus where the rotation alone takes them) is at least this,
-  /// px. A keyframe made without parallax measures no depth and would leave tracking without points
-  /// (a car waiting at a light makes one every keyframe_max_interval frames otherwise).
+  /// ... once the camera has travelled: the median flow of the keyframe points that the travel alone
+  /// causes (their pixels minus where the rotation alone takes them) is at least this, px. A
+  /// keyframe made without parallax measures no depth and would leave tracking without points (a
+  /// car waiting at a light made one every keyframe_max_interval frames).
   double keyframe_min_parallax = 5.0;
   double depth_neighbour_radius = 30.0;  ///< new keyframe points take a prior depth from map points this near, px
   int window_size = 7;                 ///< keyframes kept (the map published to users)
@@ -88,6 +88,8 @@ class Odometry {
   /// Median flow of the keyframe's measured points between where the frame's rotation alone and its
   /// whole motion take them, px: the parallax a keyframe made from the frame would triangulate with.
   double travelParallax(const Keyframe& keyframe, const Eigen::Isometry3d& T_frame_kf) const;
+  /// The median travel of driving_motions_ (zero before any).
+  Vector6d drivingMotion() const;
   /// Refines the active keyframe's depths with a tracked frame. Returns the frame's edge test (null
   /// without a field), which the frame keeps if it becomes a keyframe.
   std::shared_ptr<const SharedClassEdgeTest> refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf);
@@ -138,7 +140,11 @@ class Odometry {
   // The last two final poses (constant-velocity prediction) and whether any exists.
   Eigen::Isometry3d T_world_last_ = Eigen::Isometry3d::Identity(), T_world_before_ = Eigen::Isometry3d::Identity();
   int poses_seen_ = 0;
-  std::deque<Vector6d> recent_motions_;  ///< frame-to-frame motions of the last trusted frames (guesses after a stop)
+  /// Frame-to-frame travel (rotation left out) of the last trusted frames that moved: the guess
+  /// after a stop (drivingMotion).
+  std::deque<Vector6d> driving_motions_;
+  static constexpr std::size_t kDrivingMotions = 100;  ///< 10 s at 10 Hz
+  static constexpr double kStandingFraction = 0.1;     ///< of the driving travel: standing, or nearly
   double last_inlier_ratio_ = 1.0;  ///< photometric inlier ratio of the last tracked frame (1: none)
 };
 

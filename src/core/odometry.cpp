@@ -163,11 +163,14 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
   // (identity at the very start), so that odom stays continuous after a loss.
   Eigen::Isometry3d T_last_first = initializer_.T_last_first();
   double depth_scale = 1.0;
+  bool scale_carried = false;
   if (recovering_ && poses_seen_ >= 2) {
     const double speed = (T_world_before_.inverse() * T_world_last_).translation().norm();
     const double baseline = T_last_first.translation().norm();
-    if (speed > 0.0 && baseline > 0.0) depth_scale = speed * static_cast<double>(waiting_.size() - 1) / baseline;
+    scale_carried = speed > 0.0 && baseline > 0.0;
+    if (scale_carried) depth_scale = speed * static_cast<double>(waiting_.size() - 1) / baseline;
   }
+  if (!scale_carried) driving_motions_.clear();  // travel at another map's scale
   T_last_first.translation() *= depth_scale;
   const Eigen::Isometry3d T_world_first =
       poses_seen_ >= 2 ? T_world_last_ * (T_world_before_.inverse() * T_world_last_) : T_world_last_;
@@ -244,13 +247,10 @@ std::vector<Eigen::Isometry3d> Odometry::guesses(const Keyframe& keyframe) const
     // Constant velocity first, then no motion, half and double the velocity.
     world_poses = {T_world_last_ * se3Exp(velocity), T_world_last_, T_world_last_ * se3Exp(0.5 * velocity),
                    T_world_last_ * se3Exp(2.0 * velocity)};
-    // Standing, or nearly: the guesses above all say "no motion". A car drives off the way it came,
-    // so the fastest recent motion is one more (a start that the frames caught late, or dropped).
-    const auto fastest = std::max_element(recent_motions_.begin(), recent_motions_.end(), [](const Vector6d& a, const Vector6d& b) {
-      return a.head<3>().norm() < b.head<3>().norm();
-    });
-    if (fastest != recent_motions_.end() && velocity.head<3>().norm() < 0.1 * fastest->head<3>().norm())
-      world_poses.push_back(T_world_last_ * se3Exp(*fastest));
+    // Standing, or nearly: the guesses above all say "no motion". A car drives off the way it came:
+    // the travel it drove at before is one more (a start that the frames caught late, or dropped).
+    const Vector6d driving = drivingMotion();
+    if (velocity.head<3>().norm() < kStandingFraction * driving.head<3>().norm()) world_poses.push_back(T_world_last_ * se3Exp(driving));
   }
   std::vector<Eigen::Isometry3d> guesses;
   for (const Eigen::Isometry3d& T_world_cam : world_poses) guesses.push_back(T_world_cam.inverse() * keyframe.T_world_cam);
@@ -282,9 +282,10 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
   followCorners(*frame);
   ++frames_since_keyframe_;
   const bool few_in_view = pose.tracking.points_in_view < options_.keyframe_min_in_view * pose.tracking.points;
-  const bool wanted =
-      pose.tracking.mean_flow > options_.keyframe_flow || few_in_view || frames_since_keyframe_ >= options_.keyframe_max_interval;
-  if (wanted && travelParallax(*active_, pose.tracking.T_cam_kf) >= options_.keyframe_min_parallax) {
+  // The interval only while the camera travels: standing, a keyframe would measure no depth.
+  const bool interval = frames_since_keyframe_ >= options_.keyframe_max_interval &&
+                        travelParallax(*active_, pose.tracking.T_cam_kf) >= options_.keyframe_min_parallax;
+  if (pose.tracking.mean_flow > options_.keyframe_flow || few_in_view || interval) {
     pose.T_world_cam = makeKeyframe(frame, std::move(frame_edges), pose.T_world_cam, &pose);
     pose.keyframe = true;
   }
@@ -406,13 +407,26 @@ void Odometry::followCorners(const OdometryFrame& frame) {
 }
 
 void Odometry::remember(const FramePose& pose) {
-  constexpr std::size_t kRecentMotions = 100;  // 10 s at 10 Hz: the speed before a stop at a light
   T_world_before_ = T_world_last_;
   T_world_last_ = orthonormalized(pose.T_world_cam);
   ++poses_seen_;
   if (!pose.trusted || poses_seen_ < 2) return;
-  recent_motions_.push_back(se3Log(T_world_before_.inverse() * T_world_last_));
-  if (recent_motions_.size() > kRecentMotions) recent_motions_.pop_front();
+  // Only motions of a driving camera are kept: the store outlasts a stop of any length.
+  Vector6d motion = se3Log(T_world_before_.inverse() * T_world_last_);
+  if (motion.head<3>().norm() < kStandingFraction * drivingMotion().head<3>().norm()) return;
+  motion.tail<3>().setZero();  // the travel; a turn it made then says nothing of the start
+  driving_motions_.push_back(motion);
+  if (driving_motions_.size() > kDrivingMotions) driving_motions_.pop_front();
+}
+
+Vector6d Odometry::drivingMotion() const {
+  if (driving_motions_.empty()) return Vector6d::Zero();
+  // The median by length: one jump (dropped frames, a correction) does not make it.
+  std::vector<const Vector6d*> sorted;
+  for (const Vector6d& motion : driving_motions_) sorted.push_back(&motion);
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end(),
+                   [](const Vector6d* a, const Vector6d* b) { return a->head<3>().norm() < b->head<3>().norm(); });
+  return *sorted[sorted.size() / 2];
 }
 
 }  // namespace semantic_edge_vo

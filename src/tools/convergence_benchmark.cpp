@@ -44,7 +44,8 @@ bool parse(int argc, char** argv, Arguments* args, std::string* error) {
       return false;
     }
     const std::string value = argv[++i];
-    if (flag == "--output") args->output = value;
+    if (value.empty()) *error = flag + " needs a value";  // parseNumber would keep the default
+    else if (flag == "--output") args->output = value;
     else if (flag == "--scene") {
       if (!synthetic::parseSceneType(value, &args->scene)) *error = "--scene must be city, village or highway (got '" + value + "')";
     } else if (flag == "--pairs") *error = parseNumber(flag, value, &args->pairs);

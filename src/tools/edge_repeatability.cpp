@@ -50,7 +50,8 @@ bool parse(int argc, char** argv, Arguments* args, std::string* error) {
       return false;
     }
     const std::string value = argv[++i];
-    if (flag == "--output") args->output = value;
+    if (value.empty()) *error = flag + " needs a value";  // parseNumber would keep the default
+    else if (flag == "--output") args->output = value;
     else if (flag == "--scene") {
       synthetic::SceneType scene;
       if (value == "all") args->scenes = {synthetic::SceneType::kCity, synthetic::SceneType::kVillage, synthetic::SceneType::kHighway};

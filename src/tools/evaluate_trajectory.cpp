@@ -59,7 +59,7 @@ std::string parseArguments(int argc, char** argv, Arguments* args) {
       positional.push_back(flag);
       continue;
     }
-    if (i + 1 >= argc) return flag + " needs a value";
+    if (i + 1 >= argc || argv[i + 1][0] == '\0') return flag + " needs a value";  // parseNumber would keep the default
     const std::string value = argv[++i];
     const auto oneOf = [&](std::initializer_list<const char*> choices) {
       for (const char* choice : choices)

@@ -46,7 +46,8 @@ struct Arguments {
 
 bool parse(int argc, char** argv, Arguments* args, std::string* error) {
   std::string scene, frames, seed, stop_at, stop_duration;
-  std::map<std::string, std::string> noise = {{"--label-confusion", ""}, {"--edge-blur", ""}, {"--missed-edges", ""}, {"--spurious-edges", ""}};
+  std::map<std::string, std::string> noise;
+  for (const std::string& flag : noiseFlags()) noise[flag] = "";
   std::map<std::string, std::string*> values = {{"--scene", &scene}, {"--frames", &frames}, {"--seed", &seed}, {"--output", &args->output},
                                                 {"--bag", &args->bag}, {"--stop-at", &stop_at}, {"--stop-for", &stop_duration}};
   for (auto& [flag, text] : noise) values[flag] = &text;

@@ -47,7 +47,7 @@ TEST(CommandLine, NumbersMustBeWholeValues) {
   EXPECT_EQ(count, 12);
 }
 
-TEST(CommandLine, SeedsAndRealsAreWholeNumbersToo) {
+TEST(CommandLine, SeedsAndRealsAreCheckedToo) {
   std::uint64_t seed = 1;
   EXPECT_EQ(parseNumber("--seed", "18446744073709551615", &seed), "");
   EXPECT_EQ(seed, 18446744073709551615u);

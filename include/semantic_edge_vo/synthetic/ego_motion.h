@@ -46,8 +46,6 @@ class EgoTrajectory {
 
   /// State at frame i >= 0.
   const EgoState& frame(int i);
-  /// Time at which the car passes arc length s (extends the trajectory as needed), s.
-  double timeAt(double s);
 
  private:
   double targetSpeed(double s);

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "semantic_edge_vo/synthetic/semantic_channels.h"
 
@@ -28,6 +29,8 @@ struct NetworkNoiseOptions {
 /// into `options`; false when `flag` is not one of them. A value that is not a number leaves the
 /// option as it was and says so in `error`.
 bool parseNoiseFlag(const std::string& flag, const std::string& value, NetworkNoiseOptions* options, std::string* error);
+/// The flags parseNoiseFlag reads.
+const std::vector<std::string>& noiseFlags();
 
 /// Applies the noise models in place, deterministically for the seed.
 void applyNetworkNoise(const NetworkNoiseOptions& options, std::uint64_t seed, SemanticNetworkOutput* output);

@@ -62,19 +62,21 @@ void EgoTrajectory::appendFrame() {
       double acceleration = std::clamp(0.8 * (targetSpeed(state.s) - state.speed), -options_.max_deceleration,
                                        options_.max_acceleration);
       // A stop: brake at the deceleration that ends at stop_at once the comfortable one (70 % of the
-      // most) would no longer do, stand stop_duration, then drive on as before.
-      const double to_stop = options_.stop_at - state.s;
+      // most) would no longer do, at most the most (a stop too close for it is overshot), stand
+      // stop_duration, then drive on as before.
       if (options_.stop_at >= 0.0 && !stop_done_) {
-        const double now = start_time + (i + 1) * dt;
-        if (standing_since_ < 0.0 && (to_stop < 0.01 || (to_stop < 1.0 && state.speed < 0.05))) {
+        const double to_stop = options_.stop_at - state.s, now = start_time + (i + 1) * dt;
+        if (standing_since_ < 0.0 && to_stop < 1.0 && state.speed < 0.05) {
           standing_since_ = now;
           state.speed = 0.0;
         }
         if (standing_since_ >= 0.0) {
           stop_done_ = now - standing_since_ >= options_.stop_duration;
           if (!stop_done_) continue;  // standing: no motion this substep
+        } else if (to_stop <= 0.0) {
+          acceleration = -options_.max_deceleration;
         } else if (state.speed * state.speed >= 2.0 * 0.7 * options_.max_deceleration * to_stop) {
-          acceleration = -state.speed * state.speed / (2.0 * to_stop);
+          acceleration = std::max(-options_.max_deceleration, -state.speed * state.speed / (2.0 * to_stop));
         }
       }
       state.s += dt * (state.speed + 0.5 * acceleration * dt);
@@ -106,16 +108,6 @@ void EgoTrajectory::appendFrame() {
 const EgoState& EgoTrajectory::frame(int i) {
   while (static_cast<int>(states_.size()) <= i) appendFrame();
   return states_[static_cast<std::size_t>(i)];
-}
-
-double EgoTrajectory::timeAt(double s) {
-  while (states_.size() < 2 || states_.back().s < s) appendFrame();
-  const auto after = std::lower_bound(states_.begin() + 1, states_.end(), s,
-                                      [](const EgoState& state, double value) { return state.s < value; });
-  const EgoState& b = *after;
-  const EgoState& a = *(after - 1);
-  const double t = b.s > a.s ? std::clamp((s - a.s) / (b.s - a.s), 0.0, 1.0) : 0.0;
-  return a.time + t * (b.time - a.time);
 }
 
 }  // namespace synthetic

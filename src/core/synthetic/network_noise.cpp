@@ -129,14 +129,19 @@ std::string NetworkNoiseOptions::validate() const {
   return error.str();
 }
 
+const std::vector<std::string>& noiseFlags() {
+  static const std::vector<std::string> flags = {"--label-confusion", "--edge-blur", "--missed-edges", "--spurious-edges"};
+  return flags;
+}
+
 bool parseNoiseFlag(const std::string& flag, const std::string& value, NetworkNoiseOptions* options, std::string* error) {
-  double* target = flag == "--label-confusion" ? &options->label_confusion
-                   : flag == "--edge-blur"     ? &options->edge_blur
-                   : flag == "--missed-edges"  ? &options->missed_edges
-                   : flag == "--spurious-edges" ? &options->spurious_edges
-                                                : nullptr;
-  if (target) *error = parseNumber(flag, value, target);
-  return target != nullptr;
+  double* const targets[] = {&options->label_confusion, &options->edge_blur, &options->missed_edges, &options->spurious_edges};
+  for (std::size_t i = 0; i < noiseFlags().size(); ++i) {
+    if (flag != noiseFlags()[i]) continue;
+    *error = parseNumber(flag, value, targets[i]);
+    return true;
+  }
+  return false;
 }
 
 void applyNetworkNoise(const NetworkNoiseOptions& options, std::uint64_t seed, SemanticNetworkOutput* output) {
