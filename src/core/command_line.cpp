@@ -26,10 +26,14 @@ std::string parseFlags(int argc, char** argv, const std::map<std::string, std::s
 namespace {
 
 /// `convert` reads a number from the text and says how many characters it used (the std::sto*
-/// family); the whole text must be used.
+/// family); the whole text must be used, and it starts with a digit, '-' or '.' and is decimal
+/// (std::sto* would also skip spaces, take a '+', and std::stod hexadecimal).
 template <typename T, typename Convert>
 std::string convertAll(const std::string& flag, const std::string& text, const char* kind, Convert convert, T* value) {
   if (text.empty()) return "";
+  const std::string bad = flag + " takes " + kind + " (got '" + text + "')";
+  const unsigned char first = static_cast<unsigned char>(text[0]);
+  if ((!std::isdigit(first) && first != '-' && first != '.') || text.find_first_of("xX") != std::string::npos) return bad;  // no hex
   std::size_t used = 0;
   try {
     const T parsed = convert(text, &used);
@@ -39,7 +43,7 @@ std::string convertAll(const std::string& flag, const std::string& text, const c
     }
   } catch (const std::exception&) {  // not a number, or out of range
   }
-  return flag + " takes " + kind + " (got '" + text + "')";
+  return bad;
 }
 
 }  // namespace

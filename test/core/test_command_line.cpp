@@ -44,7 +44,10 @@ TEST(CommandLine, NumbersMustBeWholeValues) {
   EXPECT_EQ(parseNumber("--runs", "3x", &count), "--runs takes a whole number (got '3x')");
   EXPECT_EQ(parseNumber("--runs", "abc", &count), "--runs takes a whole number (got 'abc')");
   EXPECT_NE(parseNumber("--runs", "99999999999", &count), "");
-  EXPECT_EQ(count, 12);
+  EXPECT_NE(parseNumber("--runs", " 3", &count), "");  // std::stoi would skip the space
+  EXPECT_NE(parseNumber("--runs", "+3", &count), "");
+  EXPECT_EQ(parseNumber("--runs", "-3", &count), "");
+  EXPECT_EQ(count, -3);
 }
 
 TEST(CommandLine, SeedsAndRealsAreCheckedToo) {
@@ -61,9 +64,12 @@ TEST(CommandLine, SeedsAndRealsAreCheckedToo) {
   EXPECT_EQ(parseNumber("--radius", "1e-3", &radius), "");
   EXPECT_EQ(radius, 1e-3);
   EXPECT_EQ(parseNumber("--radius", "0.3x", &radius), "--radius takes a number (got '0.3x')");
-  EXPECT_EQ(parseNumber("--radius", "nan", &radius), "--radius takes a finite number (got 'nan')");
-  EXPECT_NE(parseNumber("--radius", "inf", &radius), "");
-  EXPECT_EQ(radius, 1e-3);
+  EXPECT_EQ(parseNumber("--radius", "nan", &radius), "--radius takes a number (got 'nan')");
+  EXPECT_EQ(parseNumber("--radius", "-inf", &radius), "--radius takes a finite number (got '-inf')");
+  EXPECT_NE(parseNumber("--radius", "0x1p3", &radius), "");  // std::stod reads hexadecimal
+  EXPECT_EQ(parseNumber("--radius", ".5", &radius), "");
+  EXPECT_EQ(radius, 0.5);
+  EXPECT_NE(parseNumber("--seed", "18446744073709551616", &seed), "");  // 2^64: out of range
 }
 
 }  // namespace
