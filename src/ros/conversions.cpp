@@ -27,7 +27,7 @@ PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info) {
   // The calibration is of the full sensor; a binned image or a region of interest of it
   // (REP-104) scales and shifts the intrinsics as image_geometry's camera model does. Binning 0
   // means 1, an all-zero ROI the full image.
-  const double bin_x = std::max(1u, info.binning_x), bin_y = std::max(1u, info.binning_y);
+  const std::uint32_t bin_x = std::max(1u, info.binning_x), bin_y = std::max(1u, info.binning_y);
   const bool full = info.roi.width == 0 || info.roi.height == 0;
   const double x_offset = full ? 0.0 : info.roi.x_offset, y_offset = full ? 0.0 : info.roi.y_offset;
   PinholeCamera camera;
@@ -35,8 +35,8 @@ PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info) {
   camera.fy = (has_projection ? info.P[5] : info.K[4]) / bin_y;
   camera.cx = ((has_projection ? info.P[2] : info.K[2]) - x_offset) / bin_x;
   camera.cy = ((has_projection ? info.P[6] : info.K[5]) - y_offset) / bin_y;
-  camera.width = static_cast<int>((full ? info.width : info.roi.width) / static_cast<std::uint32_t>(bin_x));
-  camera.height = static_cast<int>((full ? info.height : info.roi.height) / static_cast<std::uint32_t>(bin_y));
+  camera.width = static_cast<int>((full ? info.width : info.roi.width) / bin_x);
+  camera.height = static_cast<int>((full ? info.height : info.roi.height) / bin_y);
   return camera;
 }
 

@@ -27,17 +27,16 @@ std::string Rectifier::prepare(const sensor_msgs::CameraInfo& info) {
   map1_ = cv::Mat();
   map2_ = cv::Mat();
   if (info.width == 0 || info.height == 0) return "camera_info has no image size";
-  // image_proc rectifies binned and ROI images; the maps here are the full sensor's.
-  if (info.binning_x > 1 || info.binning_y > 1 || (info.roi.width != 0 && info.roi.height != 0 &&
-                                                  (info.roi.width != info.width || info.roi.height != info.height)))
+  // The rectified camera is the one the odometry reads from any camera_info (P, or K where unset).
+  const PinholeCamera target = cameraFromInfo(info);
+  // A binned or region-of-interest image is smaller than the sensor, whose maps these would be.
+  if (target.width != static_cast<int>(info.width) || target.height != static_cast<int>(info.height))
     return "binned or region-of-interest images are not rectified here (binning " + std::to_string(info.binning_x) + "x" +
            std::to_string(info.binning_y) + ", roi " + std::to_string(info.roi.width) + "x" + std::to_string(info.roi.height) +
            "): rectify them with image_proc and set rectify false";
   if (info.K[0] <= 0.0 || info.K[4] <= 0.0) return "camera_info K has no focal length";
   const cv::Matx33d K(info.K.data());
   const cv::Matx33d R = allZero(info.R) ? cv::Matx33d::eye() : cv::Matx33d(info.R.data());
-  // The rectified camera is the one the odometry reads from any camera_info (P, or K where unset).
-  const PinholeCamera target = cameraFromInfo(info);
   const cv::Matx33d P(target.fx, 0.0, target.cx, 0.0, target.fy, target.cy, 0.0, 0.0, 1.0);
   const cv::Size size(static_cast<int>(info.width), static_cast<int>(info.height));
   const cv::Mat D(info.D, true);
