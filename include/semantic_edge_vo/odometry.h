@@ -1,4 +1,5 @@
 #pragma once
+#include <chrono>
 #include <deque>
 #include <memory>
 #include <string>
@@ -72,19 +73,27 @@ class Odometry {
   /// frame's; none while initialising; all the waiting frames' when initialisation succeeds.
   std::vector<FramePose> process(const std::shared_ptr<const OdometryFrame>& frame);
   /// Forgets the map: the next frame starts a new initialisation, as after a loss (the new map
-  /// begins where the odometry predicts that frame, at the old map's scale: odom stays continuous).
-  /// Nothing to do while initialising.
+  /// begins where the odometry predicts that frame, at the old map's scale: odom stays continuous),
+  /// but without trying the old map first. While initialising it only stops those tries.
   void restart();
-  /// Poses of frames still waiting for initialisation, as untrusted predictions (end of a sequence).
+  /// Poses of frames still waiting for initialisation, as untrusted constant-velocity predictions (end of a sequence).
   std::vector<FramePose> flush();
 
   OdometryState state() const { return state_; }
   const std::deque<std::shared_ptr<Keyframe>>& keyframes() const { return keyframes_; }
 
  private:
-  std::vector<FramePose> initialize(const std::shared_ptr<const OdometryFrame>& frame);
+  /// `start`: when the frame's processing began (its time is the waiting frame's).
+  std::vector<FramePose> initialize(const std::shared_ptr<const OdometryFrame>& frame, std::chrono::steady_clock::time_point start);
   void startInitialization(const std::shared_ptr<const OdometryFrame>& frame);
+  /// After a loss, tracks the frame against the map it had (the view may come back: an occlusion, a
+  /// standing car). On success the odometry tracks on, `poses` gets the waiting frames' untrusted
+  /// predictions and the frame's pose; otherwise nothing changes.
+  bool relocalize(const std::shared_ptr<const OdometryFrame>& frame, std::vector<FramePose>* poses);
   FramePose track(const std::shared_ptr<const OdometryFrame>& frame);
+  /// The pose of a frame tracked against the active keyframe (lost when the tracking failed); the
+  /// depths, corners and keyframe decision follow from it.
+  FramePose trackedPose(const std::shared_ptr<const OdometryFrame>& frame, const TrackingResult& result, double tracking_ms);
   /// Median flow of the keyframe's measured points between where the frame's rotation alone and its
   /// whole motion take them, px: the parallax a keyframe made from the frame would triangulate with.
   double travelParallax(const Keyframe& keyframe, const Eigen::Isometry3d& T_frame_kf) const;
@@ -114,7 +123,8 @@ class Odometry {
   void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);
   /// Follows the active keyframe's corners into a tracked frame (KeyframeMotion).
   void followCorners(const OdometryFrame& frame);
-  std::vector<Eigen::Isometry3d> guesses(const Keyframe& keyframe) const;
+  /// Initial guesses for a frame `steps` frames after the last pose.
+  std::vector<Eigen::Isometry3d> guesses(const Keyframe& keyframe, int steps) const;
   void remember(const FramePose& pose);
 
   OdometryOptions options_;
@@ -127,6 +137,7 @@ class Odometry {
   KeyframeMotion keyframe_motion_;  ///< corners from the active keyframe
   OdometryState state_ = OdometryState::kInitializing;
   bool recovering_ = false;
+  bool relocalizing_ = false;  ///< lost: each frame is tried against the map it had before a new initialisation's
   /// A frame since the initialisation started, with the initialiser's time on it (reported as its tracking time).
   struct WaitingFrame {
     std::shared_ptr<const OdometryFrame> frame;
@@ -145,6 +156,9 @@ class Odometry {
   std::deque<Vector6d> driving_motions_;
   static constexpr std::size_t kDrivingMotions = 100;  ///< 10 s at 10 Hz
   static constexpr double kStandingFraction = 0.1;     ///< of the driving travel: standing, or nearly
+  /// Photometric inlier ratios of the last tracked frames: how well the map explained them (relocalize).
+  std::deque<double> recent_inlier_ratios_;
+  static constexpr std::size_t kRecentInlierRatios = 10;
   double last_inlier_ratio_ = 1.0;  ///< photometric inlier ratio of the last tracked frame (1: none)
 };
 

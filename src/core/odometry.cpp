@@ -95,7 +95,12 @@ Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera)
       keyframe_motion_(options.keyframe_motion, camera) {}
 
 std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFrame>& frame) {
-  if (state_ != OdometryState::kTracking) return initialize(frame);
+  if (state_ != OdometryState::kTracking) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<FramePose> poses;
+    if (relocalizing_ && relocalize(frame, &poses)) return poses;
+    return initialize(frame, start);
+  }
   FramePose merged;
   if (deferred_window_.running() && frame->index >= merge_window_at_) {
     mergeWindow(&merged);
@@ -108,18 +113,23 @@ std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFra
 }
 
 void Odometry::restart() {
+  relocalizing_ = false;  // a new map was asked for
   if (state_ != OdometryState::kTracking) return;
   state_ = OdometryState::kInitializing;
   recovering_ = true;
 }
 
 std::vector<FramePose> Odometry::flush() {
+  // Constant velocity from the last pose on (standing when it is the first).
+  const Eigen::Isometry3d step = poses_seen_ >= 2 ? T_world_before_.inverse() * T_world_last_ : Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d predicted = T_world_last_;
   std::vector<FramePose> poses;
   for (const WaitingFrame& waiting : waiting_) {
+    predicted = orthonormalized(predicted * step);
     FramePose pose;
     pose.index = waiting.frame->index;
     pose.time = waiting.frame->time;
-    pose.T_world_cam = T_world_last_;
+    pose.T_world_cam = predicted;
     pose.state = OdometryState::kInitializing;
     pose.tracking_ms = waiting.ms;
     poses.push_back(pose);
@@ -137,11 +147,12 @@ void Odometry::startInitialization(const std::shared_ptr<const OdometryFrame>& f
   waiting_.front().ms = elapsedMs(start);
 }
 
-std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const OdometryFrame>& frame) {
-  const auto start = std::chrono::steady_clock::now();
+std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const OdometryFrame>& frame,
+                                            std::chrono::steady_clock::time_point start) {
   state_ = OdometryState::kInitializing;
   if (waiting_.empty()) {
     startInitialization(frame);
+    waiting_.front().ms = elapsedMs(start);
     return {};
   }
   const TwoViewInitializer::Status status = initializer_.add(gray8(*frame));
@@ -235,42 +246,72 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
   }
   waiting_.clear();
   state_ = OdometryState::kTracking;
-  recovering_ = false;
+  recovering_ = relocalizing_ = false;
   frames_since_keyframe_ = static_cast<int>(n) - 1;
   return poses;
 }
 
-std::vector<Eigen::Isometry3d> Odometry::guesses(const Keyframe& keyframe) const {
+std::vector<Eigen::Isometry3d> Odometry::guesses(const Keyframe& keyframe, int steps) const {
   std::vector<Eigen::Isometry3d> world_poses = {T_world_last_};
   if (poses_seen_ >= 2) {
     const Vector6d velocity = se3Log(T_world_before_.inverse() * T_world_last_);
+    const double n = static_cast<double>(steps);
     // Constant velocity first, then no motion, half and double the velocity.
-    world_poses = {T_world_last_ * se3Exp(velocity), T_world_last_, T_world_last_ * se3Exp(0.5 * velocity),
-                   T_world_last_ * se3Exp(2.0 * velocity)};
+    world_poses = {T_world_last_ * se3Exp(n * velocity), T_world_last_, T_world_last_ * se3Exp(0.5 * n * velocity),
+                   T_world_last_ * se3Exp(2.0 * n * velocity)};
     // Standing, or nearly: the guesses above all say "no motion". A car drives off the way it came:
     // the travel it drove at before is one more (a start that the frames caught late, or dropped).
     const Vector6d driving = drivingMotion();
-    if (velocity.head<3>().norm() < kStandingFraction * driving.head<3>().norm()) world_poses.push_back(T_world_last_ * se3Exp(driving));
+    if (velocity.head<3>().norm() < kStandingFraction * driving.head<3>().norm())
+      world_poses.push_back(T_world_last_ * se3Exp(n * driving));
   }
   std::vector<Eigen::Isometry3d> guesses;
   for (const Eigen::Isometry3d& T_world_cam : world_poses) guesses.push_back(T_world_cam.inverse() * keyframe.T_world_cam);
   return guesses;
 }
 
+bool Odometry::relocalize(const std::shared_ptr<const OdometryFrame>& frame, std::vector<FramePose>* poses) {
+  // The frames since the last pose (the waiting ones and this) at the motion before the loss.
+  const int steps = static_cast<int>(waiting_.size()) + 1;
+  const auto start = std::chrono::steady_clock::now();
+  const TrackingResult result = tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_, steps), last_inlier_ratio_);
+  // Only a map that explains the frame about as well as it did the frames before the loss: a loss
+  // of the view (an occlusion, a flash) finds it again; a map gone wrong (traffic close by made the
+  // loss, and it explains the next frame just above min_inlier_ratio) is initialised anew.
+  const double usual_ratio = median({recent_inlier_ratios_.begin(), recent_inlier_ratios_.end()});
+  if (!result.ok || result.inlierRatio() < options_.tracker.accept_inlier_ratio * usual_ratio) return false;
+  // Back on the map it had: the frames since the loss stay untrusted predictions.
+  *poses = flush();
+  for (const FramePose& pose : *poses) remember(pose);
+  state_ = OdometryState::kTracking;
+  recovering_ = relocalizing_ = false;
+  FramePose pose = trackedPose(frame, result, elapsedMs(start));
+  pose.recovered = true;
+  poses->push_back(pose);
+  return true;
+}
+
 FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
   const auto start = std::chrono::steady_clock::now();
+  const TrackingResult result = tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_, 1), last_inlier_ratio_);
+  return trackedPose(frame, result, elapsedMs(start));
+}
+
+FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& frame, const TrackingResult& result, double tracking_ms) {
   FramePose pose;
   pose.index = frame->index;
   pose.time = frame->time;
   pose.keyframe_id = active_->id;
-  pose.tracking = tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_), last_inlier_ratio_);
-  pose.tracking_ms = elapsedMs(start);
+  pose.tracking = result;
+  pose.tracking_ms = tracking_ms;
   last_inlier_ratio_ = pose.tracking.ok ? pose.tracking.inlierRatio() : 1.0;
   if (!pose.tracking.ok) {
-    // Lost: report the prediction, untrusted, and initialise again from the next frame.
+    // Lost: report the prediction, untrusted; from the next frame on, try the map it had until a
+    // new initialisation succeeds.
     pose.T_world_cam = poses_seen_ >= 2 ? T_world_last_ * (T_world_before_.inverse() * T_world_last_) : T_world_last_;
     pose.state = OdometryState::kLost;
     restart();
+    relocalizing_ = true;
     remember(pose);
     return pose;
   }
@@ -410,6 +451,10 @@ void Odometry::remember(const FramePose& pose) {
   T_world_before_ = T_world_last_;
   T_world_last_ = orthonormalized(pose.T_world_cam);
   ++poses_seen_;
+  if (pose.trusted && pose.tracking.ok) {
+    recent_inlier_ratios_.push_back(pose.tracking.inlierRatio());
+    if (recent_inlier_ratios_.size() > kRecentInlierRatios) recent_inlier_ratios_.pop_front();
+  }
   if (!pose.trusted || poses_seen_ < 2) return;
   // Only motions of a driving camera are kept: the store outlasts a stop of any length.
   Vector6d motion = se3Log(T_world_before_.inverse() * T_world_last_);
