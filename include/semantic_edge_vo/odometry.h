@@ -123,8 +123,21 @@ class Odometry {
   void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);
   /// Follows the active keyframe's corners into a tracked frame (KeyframeMotion).
   void followCorners(const OdometryFrame& frame);
-  /// Initial guesses for a frame `steps` frames after the last pose.
-  std::vector<Eigen::Isometry3d> guesses(const Keyframe& keyframe, int steps) const;
+  /// Initial guesses for the frame, from the last pose and the frame intervals since it.
+  std::vector<Eigen::Isometry3d> guesses(const Keyframe& keyframe, const OdometryFrame& frame) const;
+  /// A frame's, or a pose's, index and time stamp.
+  struct FrameStamp {
+    int index = 0;
+    double time = 0.0;
+  };
+  static FrameStamp stampOf(const OdometryFrame& frame) { return {frame.index, frame.time}; }
+  /// Frame intervals from one to the other (at least 1): by the stamps at the usual interval, so
+  /// that frames the stream dropped count; by the indices without stamps.
+  int framesBetween(const FrameStamp& from, const FrameStamp& to) const;
+  /// The motion of one frame interval at the velocity of the last two poses (identity before two).
+  Eigen::Isometry3d frameMotion() const;
+  /// The frame's pose at constant velocity from the last pose.
+  Eigen::Isometry3d predict(const OdometryFrame& frame) const;
   void remember(const FramePose& pose);
 
   OdometryOptions options_;
@@ -151,6 +164,10 @@ class Odometry {
   // The last two final poses (constant-velocity prediction) and whether any exists.
   Eigen::Isometry3d T_world_last_ = Eigen::Isometry3d::Identity(), T_world_before_ = Eigen::Isometry3d::Identity();
   int poses_seen_ = 0;
+  FrameStamp last_stamp_, before_stamp_;  ///< of those two poses
+  /// Time between consecutive frame indices over the last poses, s: their median is the usual interval.
+  std::deque<double> frame_intervals_;
+  static constexpr std::size_t kFrameIntervals = 10;
   /// Frame-to-frame travel (rotation left out) of the last trusted frames that moved: the guess
   /// after a stop (drivingMotion).
   std::deque<Vector6d> driving_motions_;

@@ -120,16 +120,12 @@ void Odometry::restart() {
 }
 
 std::vector<FramePose> Odometry::flush() {
-  // Constant velocity from the last pose on (standing when it is the first).
-  const Eigen::Isometry3d step = poses_seen_ >= 2 ? T_world_before_.inverse() * T_world_last_ : Eigen::Isometry3d::Identity();
-  Eigen::Isometry3d predicted = T_world_last_;
   std::vector<FramePose> poses;
   for (const WaitingFrame& waiting : waiting_) {
-    predicted = orthonormalized(predicted * step);
     FramePose pose;
     pose.index = waiting.frame->index;
     pose.time = waiting.frame->time;
-    pose.T_world_cam = predicted;
+    pose.T_world_cam = predict(*waiting.frame);
     pose.state = OdometryState::kInitializing;
     pose.tracking_ms = waiting.ms;
     poses.push_back(pose);
@@ -176,15 +172,14 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
   double depth_scale = 1.0;
   bool scale_carried = false;
   if (recovering_ && poses_seen_ >= 2) {
-    const double speed = (T_world_before_.inverse() * T_world_last_).translation().norm();
+    const double speed = frameMotion().translation().norm();  // per frame interval
     const double baseline = T_last_first.translation().norm();
     scale_carried = speed > 0.0 && baseline > 0.0;
-    if (scale_carried) depth_scale = speed * static_cast<double>(waiting_.size() - 1) / baseline;
+    if (scale_carried) depth_scale = speed * framesBetween(stampOf(*waiting_.front().frame), stampOf(*waiting_.back().frame)) / baseline;
   }
   if (!scale_carried) driving_motions_.clear();  // travel at another map's scale
   T_last_first.translation() *= depth_scale;
-  const Eigen::Isometry3d T_world_first =
-      poses_seen_ >= 2 ? T_world_last_ * (T_world_before_.inverse() * T_world_last_) : T_world_last_;
+  const Eigen::Isometry3d T_world_first = predict(*waiting_.front().frame);
 
   auto keyframe = std::make_shared<Keyframe>();
   keyframe->id = next_keyframe_id_++;
@@ -251,19 +246,19 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
   return poses;
 }
 
-std::vector<Eigen::Isometry3d> Odometry::guesses(const Keyframe& keyframe, int steps) const {
+std::vector<Eigen::Isometry3d> Odometry::guesses(const Keyframe& keyframe, const OdometryFrame& frame) const {
   std::vector<Eigen::Isometry3d> world_poses = {T_world_last_};
   if (poses_seen_ >= 2) {
-    const Vector6d velocity = se3Log(T_world_before_.inverse() * T_world_last_);
-    const double n = static_cast<double>(steps);
+    const Vector6d velocity = se3Log(frameMotion());
+    const double n = framesBetween(last_stamp_, stampOf(frame));
     // Constant velocity first, then no motion, half and double the velocity.
     world_poses = {T_world_last_ * se3Exp(n * velocity), T_world_last_, T_world_last_ * se3Exp(0.5 * n * velocity),
                    T_world_last_ * se3Exp(2.0 * n * velocity)};
     // Standing, or nearly: the guesses above all say "no motion". A car drives off the way it came:
-    // the travel it drove at before is one more (a start that the frames caught late, or dropped).
+    // one frame's travel at the speed it drove at before is one more (a start that the frames caught
+    // late, or dropped; not times the frames missed: a car starting from rest covers less).
     const Vector6d driving = drivingMotion();
-    if (velocity.head<3>().norm() < kStandingFraction * driving.head<3>().norm())
-      world_poses.push_back(T_world_last_ * se3Exp(n * driving));
+    if (velocity.head<3>().norm() < kStandingFraction * driving.head<3>().norm()) world_poses.push_back(T_world_last_ * se3Exp(driving));
   }
   std::vector<Eigen::Isometry3d> guesses;
   for (const Eigen::Isometry3d& T_world_cam : world_poses) guesses.push_back(T_world_cam.inverse() * keyframe.T_world_cam);
@@ -271,10 +266,8 @@ std::vector<Eigen::Isometry3d> Odometry::guesses(const Keyframe& keyframe, int s
 }
 
 bool Odometry::relocalize(const std::shared_ptr<const OdometryFrame>& frame, std::vector<FramePose>* poses) {
-  // The frames since the last pose (the waiting ones and this) at the motion before the loss.
-  const int steps = static_cast<int>(waiting_.size()) + 1;
   const auto start = std::chrono::steady_clock::now();
-  const TrackingResult result = tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_, steps), last_inlier_ratio_);
+  const TrackingResult result = tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_, *frame), last_inlier_ratio_);
   // Only a map that explains the frame about as well as it did the frames before the loss: a loss
   // of the view (an occlusion, a flash) finds it again; a map gone wrong (traffic close by made the
   // loss, and it explains the next frame just above min_inlier_ratio) is initialised anew.
@@ -293,7 +286,7 @@ bool Odometry::relocalize(const std::shared_ptr<const OdometryFrame>& frame, std
 
 FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
   const auto start = std::chrono::steady_clock::now();
-  const TrackingResult result = tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_, 1), last_inlier_ratio_);
+  const TrackingResult result = tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_, *frame), last_inlier_ratio_);
   return trackedPose(frame, result, elapsedMs(start));
 }
 
@@ -308,7 +301,7 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   if (!pose.tracking.ok) {
     // Lost: report the prediction, untrusted; from the next frame on, try the map it had until a
     // new initialisation succeeds.
-    pose.T_world_cam = poses_seen_ >= 2 ? T_world_last_ * (T_world_before_.inverse() * T_world_last_) : T_world_last_;
+    pose.T_world_cam = predict(*frame);
     pose.state = OdometryState::kLost;
     restart();
     relocalizing_ = true;
@@ -450,18 +443,46 @@ void Odometry::followCorners(const OdometryFrame& frame) {
 void Odometry::remember(const FramePose& pose) {
   T_world_before_ = T_world_last_;
   T_world_last_ = orthonormalized(pose.T_world_cam);
+  before_stamp_ = last_stamp_;
+  last_stamp_ = {pose.index, pose.time};
   ++poses_seen_;
+  const int indices = last_stamp_.index - before_stamp_.index;
+  const double seconds = last_stamp_.time - before_stamp_.time;
+  if (poses_seen_ >= 2 && indices > 0 && seconds > 0.0) {
+    frame_intervals_.push_back(seconds / indices);
+    if (frame_intervals_.size() > kFrameIntervals) frame_intervals_.pop_front();
+  }
   if (pose.trusted && pose.tracking.ok) {
     recent_inlier_ratios_.push_back(pose.tracking.inlierRatio());
     if (recent_inlier_ratios_.size() > kRecentInlierRatios) recent_inlier_ratios_.pop_front();
   }
   if (!pose.trusted || poses_seen_ < 2) return;
   // Only motions of a driving camera are kept: the store outlasts a stop of any length.
-  Vector6d motion = se3Log(T_world_before_.inverse() * T_world_last_);
+  Vector6d motion = se3Log(frameMotion());
   if (motion.head<3>().norm() < kStandingFraction * drivingMotion().head<3>().norm()) return;
   motion.tail<3>().setZero();  // the travel; a turn it made then says nothing of the start
   driving_motions_.push_back(motion);
   if (driving_motions_.size() > kDrivingMotions) driving_motions_.pop_front();
+}
+
+int Odometry::framesBetween(const FrameStamp& from, const FrameStamp& to) const {
+  const double interval = median({frame_intervals_.begin(), frame_intervals_.end()});
+  const long frames = interval > 0.0 ? std::lround((to.time - from.time) / interval) : to.index - from.index;
+  return static_cast<int>(std::max(1L, frames));
+}
+
+Eigen::Isometry3d Odometry::frameMotion() const {
+  if (poses_seen_ < 2) return Eigen::Isometry3d::Identity();
+  const Eigen::Isometry3d motion = T_world_before_.inverse() * T_world_last_;
+  const int frames = framesBetween(before_stamp_, last_stamp_);
+  return frames == 1 ? motion : se3Exp(se3Log(motion) / frames);  // frames dropped between them: the mean
+}
+
+Eigen::Isometry3d Odometry::predict(const OdometryFrame& frame) const {
+  const Eigen::Isometry3d motion = frameMotion();
+  Eigen::Isometry3d predicted = T_world_last_;
+  for (int k = framesBetween(last_stamp_, stampOf(frame)); k > 0; --k) predicted = predicted * motion;
+  return predicted;
 }
 
 Vector6d Odometry::drivingMotion() const {
