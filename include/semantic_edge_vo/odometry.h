@@ -53,7 +53,7 @@ struct FramePose {
   Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();  ///< camera-to-world, world = first camera
   bool trusted = false;
   OdometryState state = OdometryState::kInitializing;
-  bool recovered = false;   ///< first trusted pose after a loss
+  bool recovered = false;   ///< first trusted pose after a loss or a restart
   bool keyframe = false;    ///< the frame became a keyframe
   int keyframe_id = -1;     ///< keyframe it was tracked against
   TrackingResult tracking;
@@ -131,12 +131,15 @@ class Odometry {
     double time = 0.0;
   };
   static FrameStamp stampOf(const OdometryFrame& frame) { return {frame.index, frame.time}; }
-  /// Frame intervals from one to the other (at least 1): by the stamps at the usual interval, so
-  /// that frames the stream dropped count; by the indices without stamps.
-  int framesBetween(const FrameStamp& from, const FrameStamp& to) const;
+  /// Frame intervals from one to the other, a whole number, at least 1: by the stamps at the usual
+  /// interval, so that frames the stream dropped count; by the indices without stamps.
+  double framesBetween(const FrameStamp& from, const FrameStamp& to) const;
+  /// Frame intervals from the last pose to the frame that the velocity is extrapolated over: fewer
+  /// (down to 0) once kMaxDeadReckoning frames passed since the last trusted pose.
+  double framesToExtrapolate(const OdometryFrame& frame) const;
   /// The motion of one frame interval at the velocity of the last two poses (identity before two).
   Eigen::Isometry3d frameMotion() const;
-  /// The frame's pose at constant velocity from the last pose.
+  /// The frame's pose at constant velocity from the last pose (framesToExtrapolate).
   Eigen::Isometry3d predict(const OdometryFrame& frame) const;
   void remember(const FramePose& pose);
 
@@ -168,6 +171,9 @@ class Odometry {
   /// Time between consecutive frame indices over the last poses, s: their median is the usual interval.
   std::deque<double> frame_intervals_;
   static constexpr std::size_t kFrameIntervals = 10;
+  FrameStamp last_trusted_stamp_;
+  static constexpr int kMaxDeadReckoning = 50;  ///< frames predicted on from the last trusted pose: 5 s at 10 Hz
+  double speed_at_restart_ = 0.0;  ///< travel per frame interval when the map was given up (lost, restart): the next one's scale
   /// Frame-to-frame travel (rotation left out) of the last trusted frames that moved: the guess
   /// after a stop (drivingMotion).
   std::deque<Vector6d> driving_motions_;

@@ -117,6 +117,7 @@ void Odometry::restart() {
   if (state_ != OdometryState::kTracking) return;
   state_ = OdometryState::kInitializing;
   recovering_ = true;
+  speed_at_restart_ = frameMotion().translation().norm();
 }
 
 std::vector<FramePose> Odometry::flush() {
@@ -172,7 +173,7 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
   double depth_scale = 1.0;
   bool scale_carried = false;
   if (recovering_ && poses_seen_ >= 2) {
-    const double speed = frameMotion().translation().norm();  // per frame interval
+    const double speed = speed_at_restart_;  // per frame interval
     const double baseline = T_last_first.translation().norm();
     scale_carried = speed > 0.0 && baseline > 0.0;
     if (scale_carried) depth_scale = speed * framesBetween(stampOf(*waiting_.front().frame), stampOf(*waiting_.back().frame)) / baseline;
@@ -250,7 +251,7 @@ std::vector<Eigen::Isometry3d> Odometry::guesses(const Keyframe& keyframe, const
   std::vector<Eigen::Isometry3d> world_poses = {T_world_last_};
   if (poses_seen_ >= 2) {
     const Vector6d velocity = se3Log(frameMotion());
-    const double n = framesBetween(last_stamp_, stampOf(frame));
+    const double n = framesToExtrapolate(frame);
     // Constant velocity first, then no motion, half and double the velocity.
     world_poses = {T_world_last_ * se3Exp(n * velocity), T_world_last_, T_world_last_ * se3Exp(0.5 * n * velocity),
                    T_world_last_ * se3Exp(2.0 * n * velocity)};
@@ -271,8 +272,9 @@ bool Odometry::relocalize(const std::shared_ptr<const OdometryFrame>& frame, std
   // Only a map that explains the frame about as well as it did the frames before the loss: a loss
   // of the view (an occlusion, a flash) finds it again; a map gone wrong (traffic close by made the
   // loss, and it explains the next frame just above min_inlier_ratio) is initialised anew.
+  if (!result.ok || recent_inlier_ratios_.empty()) return false;
   const double usual_ratio = median({recent_inlier_ratios_.begin(), recent_inlier_ratios_.end()});
-  if (!result.ok || result.inlierRatio() < options_.tracker.accept_inlier_ratio * usual_ratio) return false;
+  if (result.inlierRatio() < options_.tracker.accept_inlier_ratio * usual_ratio) return false;
   // Back on the map it had: the frames since the loss stay untrusted predictions.
   *poses = flush();
   for (const FramePose& pose : *poses) remember(pose);
@@ -445,6 +447,7 @@ void Odometry::remember(const FramePose& pose) {
   T_world_last_ = orthonormalized(pose.T_world_cam);
   before_stamp_ = last_stamp_;
   last_stamp_ = {pose.index, pose.time};
+  if (pose.trusted) last_trusted_stamp_ = last_stamp_;
   ++poses_seen_;
   const int indices = last_stamp_.index - before_stamp_.index;
   const double seconds = last_stamp_.time - before_stamp_.time;
@@ -465,24 +468,31 @@ void Odometry::remember(const FramePose& pose) {
   if (driving_motions_.size() > kDrivingMotions) driving_motions_.pop_front();
 }
 
-int Odometry::framesBetween(const FrameStamp& from, const FrameStamp& to) const {
+double Odometry::framesBetween(const FrameStamp& from, const FrameStamp& to) const {
   const double interval = median({frame_intervals_.begin(), frame_intervals_.end()});
-  const long frames = interval > 0.0 ? std::lround((to.time - from.time) / interval) : to.index - from.index;
-  return static_cast<int>(std::max(1L, frames));
+  const double frames = interval > 0.0 ? (to.time - from.time) / interval : static_cast<double>(to.index - from.index);
+  return frames >= 1.0 ? std::round(frames) : 1.0;  // also 1 for a stamp that is not a number
+}
+
+double Odometry::framesToExtrapolate(const OdometryFrame& frame) const {
+  // Dead reckoning ends kMaxDeadReckoning frames after the last trusted pose: the car may have
+  // stopped since (a loss it never finds its map again from would otherwise drive on for ever).
+  const double since_trusted = last_stamp_.index == last_trusted_stamp_.index ? 0.0 : framesBetween(last_trusted_stamp_, last_stamp_);
+  const double left = std::max(0.0, static_cast<double>(kMaxDeadReckoning) - since_trusted);
+  return std::min(framesBetween(last_stamp_, stampOf(frame)), left);
 }
 
 Eigen::Isometry3d Odometry::frameMotion() const {
   if (poses_seen_ < 2) return Eigen::Isometry3d::Identity();
   const Eigen::Isometry3d motion = T_world_before_.inverse() * T_world_last_;
-  const int frames = framesBetween(before_stamp_, last_stamp_);
-  return frames == 1 ? motion : se3Exp(se3Log(motion) / frames);  // frames dropped between them: the mean
+  const double frames = framesBetween(before_stamp_, last_stamp_);
+  return frames == 1.0 ? motion : se3Exp(se3Log(motion) / frames);  // frames dropped between them: the mean
 }
 
 Eigen::Isometry3d Odometry::predict(const OdometryFrame& frame) const {
-  const Eigen::Isometry3d motion = frameMotion();
-  Eigen::Isometry3d predicted = T_world_last_;
-  for (int k = framesBetween(last_stamp_, stampOf(frame)); k > 0; --k) predicted = predicted * motion;
-  return predicted;
+  const double frames = framesToExtrapolate(frame);
+  if (frames == 1.0) return T_world_last_ * frameMotion();
+  return T_world_last_ * se3Exp(frames * se3Log(frameMotion()));
 }
 
 Vector6d Odometry::drivingMotion() const {

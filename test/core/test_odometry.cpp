@@ -75,10 +75,14 @@ DriveResult drive(Event event) {
   const FrameBuilder builder(FrameBuilderOptions{}, sequence.camera(), ClassTable::cityscapes().names());
   Odometry odometry(shippedOdometryOptions(), sequence.camera());
   DriveResult run;
-  const auto keep = [&run](const std::vector<FramePose>& poses) {
+  // As in the tracking nodelet, the odometry numbers the frames it receives: dropped frames are seen
+  // in the stamps only. drive_index maps its numbers back to the drive's frames.
+  std::vector<int> drive_index;
+  const auto keep = [&run, &drive_index](const std::vector<FramePose>& poses) {
     for (const FramePose& pose : poses) {
-      EXPECT_EQ(run.poses.count(pose.index), 0u) << "frame " << pose.index << " got a second pose";
-      run.poses[pose.index] = pose;
+      const int i = drive_index.at(static_cast<std::size_t>(pose.index));
+      EXPECT_EQ(run.poses.count(i), 0u) << "frame " << i << " got a second pose";
+      run.poses[i] = pose;
     }
   };
   const int frames = stop ? kStopFrames : kFrames;
@@ -96,7 +100,8 @@ DriveResult drive(Event event) {
     if (event == Event::kFramesDropped && i >= kEvent && i < kEvent + kDroppedWhileDriving) continue;
     if (i == kEvent && event == Event::kRestart) odometry.restart();
     ExtractionError error;
-    const auto odometry_frame = builder.build(i, frame.time, frame.gray, ClassEvidence{}, &error);
+    const auto odometry_frame = builder.build(static_cast<int>(drive_index.size()), frame.time, frame.gray, ClassEvidence{}, &error);
+    drive_index.push_back(i);
     EXPECT_FALSE(error) << error.reason;
     keep(odometry.process(odometry_frame));
   }
