@@ -4,7 +4,8 @@
 // on the map it had when the view comes back. A restart asked for (the tracking nodelet's reset
 // service) starts a new map there. A car that stops at a light and drives on is tracked all along,
 // on the map it had, also when the first second of its start never reaches the odometry (dropped
-// frames) or a van blocks the view while it stands.
+// frames) or a van blocks the view while it stands. Frames dropped from the stream are counted from
+// the stamps; a loss it never recovers from predicts on for 5 s, then stands.
 #include <cstdio>
 #include <map>
 
@@ -37,7 +38,7 @@ struct DriveResult {
   std::vector<double> speed;  ///< of the car, m/s
 };
 
-enum class Event { kBlindedFrame, kRestart, kStop, kStopThenFramesDropped, kStopWhileBlinded, kBlindedWhileDriving, kFramesDropped };
+enum class Event { kBlindedFrame, kRestart, kStop, kStopThenFramesDropped, kStopWhileBlinded, kBlindedWhileDriving, kFramesDropped, kBlindedForGood };
 
 constexpr int kStopFrames = 120;       ///< the drive with a stop: to the light (braking from about 15 m), 3 s there, and on
 constexpr double kStopAt = 25.0;       ///< m along the route
@@ -57,6 +58,7 @@ Blinding blindingOf(Event event, int first_standing) {
     case Event::kBlindedFrame: return {kEvent, 1};
     case Event::kBlindedWhileDriving: return {kEvent, kBlindedFrames};
     case Event::kStopWhileBlinded: return {first_standing < 0 ? -1 : first_standing + kBlindedIntoStop, kBlindedFrames};
+    case Event::kBlindedForGood: return {kEvent, kStopFrames};
     default: return {};
   }
 }
@@ -85,7 +87,7 @@ DriveResult drive(Event event) {
       run.poses[i] = pose;
     }
   };
-  const int frames = stop ? kStopFrames : kFrames;
+  const int frames = stop || event == Event::kBlindedForGood ? kStopFrames : kFrames;
   int last_standing = -1, first_standing = -1;
   for (int i = 0; i < frames; ++i) {
     synthetic::SyntheticFrame frame = sequence.frame(i);
@@ -249,6 +251,24 @@ TEST(Odometry, FramesDroppedWhileDrivingAreCountedFromTheStamps) {
   ASSERT_EQ(run.poses.size(), static_cast<std::size_t>(kFrames - kDroppedWhileDriving)) << "every frame that arrives gets a pose";
   for (const auto& [index, pose] : run.poses) EXPECT_TRUE(pose.trusted) << "frame " << index;
   expectContinuousAcross(run, "three frames dropped");
+}
+
+TEST(Odometry, PredictionsWhileLostEndFiftyFramesAfterTheLastTrustedPose) {
+  // A loss it never recovers from (the camera blinded for good): the untrusted predictions go on at
+  // the velocity before it for 5 s, then stand (the car may have stopped; without the bound they
+  // drove on for ever, and a new map would start wherever they had got to).
+  constexpr int kDeadReckoning = 50;  // Odometry::kMaxDeadReckoning
+  const DriveResult run = drive(Event::kBlindedForGood);
+  ASSERT_EQ(run.poses.size(), static_cast<std::size_t>(kStopFrames)) << "every frame gets a pose";
+  for (int i = kEvent; i < kStopFrames; ++i) EXPECT_FALSE(run.poses.at(i).trusted) << "frame " << i;
+  const auto position = [&run](int i) { return run.poses.at(i).T_world_cam.translation(); };
+  const int last_trusted = kEvent - 1, end = last_trusted + kDeadReckoning;
+  const double step = (position(last_trusted) - position(last_trusted - 1)).norm();
+  std::printf("odometry, blinded for good from frame %d: predicted %.3f map units on by frame %d (%.3f a frame), %.2g more after\n",
+              kEvent, (position(end) - position(last_trusted)).norm(), end, step, (position(kStopFrames - 1) - position(end)).norm());
+  EXPECT_NEAR((position(end) - position(last_trusted)).norm(), kDeadReckoning * step, 0.05 * kDeadReckoning * step)
+      << "constant velocity up to the bound";
+  for (int i = end + 1; i < kStopFrames; ++i) EXPECT_LT((position(i) - position(end)).norm(), 1e-9) << "frame " << i;
 }
 
 }  // namespace
