@@ -105,6 +105,9 @@ class TrackingNodelet : public nodelet::Nodelet {
                                                                     << "): the odometry starts over, odom at the new first frame");
       else if (odometry_)
         NODELET_WARN_STREAM("the image size changed: the odometry starts over");
+      // Frames still waiting for the old odometry's initialisation get their last status (no pose).
+      if (odometry_)
+        for (const FramePose& pose : odometry_->flush()) publishPose(pose);
       camera_ = camera;
       odometry_ = std::make_unique<Odometry>(options_, camera_);
       stamps_.clear();
