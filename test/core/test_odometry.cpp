@@ -38,7 +38,16 @@ struct DriveResult {
   std::vector<double> speed;  ///< of the car, m/s
 };
 
-enum class Event { kBlindedFrame, kRestart, kStop, kStopThenFramesDropped, kStopWhileBlinded, kBlindedWhileDriving, kFramesDropped, kBlindedForGood };
+enum class Event {
+  kBlindedFrame,
+  kRestart,
+  kStop,
+  kStopThenFramesDropped,
+  kStopWhileBlinded,
+  kBlindedWhileDriving,
+  kFramesDropped,
+  kBlindedForGood,
+};
 
 constexpr int kStopFrames = 120;       ///< the drive with a stop: to the light (braking from about 15 m), 3 s there, and on
 constexpr double kStopAt = 25.0;       ///< m along the route
