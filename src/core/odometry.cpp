@@ -18,6 +18,13 @@ std::shared_ptr<const SharedClassEdgeTest> edgeTestOf(const OdometryFrame& frame
   return frame.has_field ? std::make_shared<const SharedClassEdgeTest>(frame.field, radius) : nullptr;
 }
 
+/// Appends the value, keeping the newest `count` values.
+template <typename T>
+void keepLast(const T& value, std::size_t count, std::deque<T>* values) {
+  values->push_back(value);
+  if (values->size() > count) values->pop_front();
+}
+
 cv::Mat gray8(const OdometryFrame& frame) {
   cv::Mat gray;
   frame.pyramid->level(0).intensity.convertTo(gray, CV_8U);
@@ -451,21 +458,14 @@ void Odometry::remember(const FramePose& pose) {
   ++poses_seen_;
   const int indices = last_stamp_.index - before_stamp_.index;
   const double seconds = last_stamp_.time - before_stamp_.time;
-  if (poses_seen_ >= 2 && indices > 0 && seconds > 0.0) {
-    frame_intervals_.push_back(seconds / indices);
-    if (frame_intervals_.size() > kFrameIntervals) frame_intervals_.pop_front();
-  }
-  if (pose.trusted && pose.tracking.ok) {
-    recent_inlier_ratios_.push_back(pose.tracking.inlierRatio());
-    if (recent_inlier_ratios_.size() > kRecentInlierRatios) recent_inlier_ratios_.pop_front();
-  }
+  if (poses_seen_ >= 2 && indices > 0 && seconds > 0.0) keepLast(seconds / indices, kFrameIntervals, &frame_intervals_);
+  if (pose.trusted && pose.tracking.ok) keepLast(pose.tracking.inlierRatio(), kRecentInlierRatios, &recent_inlier_ratios_);
   if (!pose.trusted || poses_seen_ < 2) return;
   // Only motions of a driving camera are kept: the store outlasts a stop of any length.
   Vector6d motion = se3Log(frameMotion());
   if (motion.head<3>().norm() < kStandingFraction * drivingMotion().head<3>().norm()) return;
   motion.tail<3>().setZero();  // the travel; a turn it made then says nothing of the start
-  driving_motions_.push_back(motion);
-  if (driving_motions_.size() > kDrivingMotions) driving_motions_.pop_front();
+  keepLast(motion, kDrivingMotions, &driving_motions_);
 }
 
 double Odometry::framesBetween(const FrameStamp& from, const FrameStamp& to) const {

@@ -26,7 +26,7 @@ PinholeCamera cameraFromInfo(const sensor_msgs::CameraInfo& info) {
   const bool has_projection = info.P[0] != 0.0 || info.P[5] != 0.0;
   // The calibration is of the full sensor; a binned image or a region of interest of it
   // (REP-104) scales and shifts the intrinsics as image_geometry's camera model does. Binning 0
-  // means 1, an all-zero ROI the full image.
+  // means 1; an ROI without a width or a height, the full image (image_geometry: an all-zero one).
   const std::uint32_t bin_x = std::max(1u, info.binning_x), bin_y = std::max(1u, info.binning_y);
   const bool full = info.roi.width == 0 || info.roi.height == 0;
   const double x_offset = full ? 0.0 : info.roi.x_offset, y_offset = full ? 0.0 : info.roi.y_offset;
