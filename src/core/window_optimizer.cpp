@@ -58,6 +58,7 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
     interpolators.push_back(std::make_unique<factors::Interpolator>(*grids.back()));
   }
   const PinholeCamera& camera = window[first]->frame->pyramid->level(0).camera;
+  std::vector<factors::PosePairCache> pair_caches(count * count);  // [host * count + target]
 
   // One loss object per kind of residual, shared by all of them (the problem does not own them):
   // a window has tens of thousands of residuals.
@@ -117,7 +118,8 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
       if (!camera.contains(pixel.x(), pixel.y(), 4.0)) continue;
       double* host_pose = poses[refs[r].host].data();
       double* target_pose = poses[t].data();
-      problem.AddResidualBlock(new factors::PhotometricFactor(ray, host_value, *interpolators[t], camera, options_.photometric_sigma),
+      factors::PosePairCache& pair = pair_caches[refs[r].host * count + t];
+      problem.AddResidualBlock(new factors::PhotometricFactor(pair, ray, host_value, *interpolators[t], camera, options_.photometric_sigma),
                                &photometric_loss, host_pose, target_pose, &inverse_depths[r]);
       ++result.photometric_residuals;
       ++observed;
@@ -125,7 +127,7 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
       if (point.isEdge() && options_.edge_weight > 0.0 && target.frame->has_field &&
           associate(target.frame->field, point.class_mask, pixel, options_.edge_radius, &match)) {
         problem.AddResidualBlock(
-            new factors::EdgeFactor(ray, Eigen::Vector2d(match.u, match.v), Eigen::Vector2d(match.normal_x, match.normal_y), camera,
+            new factors::EdgeFactor(pair, ray, Eigen::Vector2d(match.u, match.v), Eigen::Vector2d(match.normal_x, match.normal_y), camera,
                                     options_.edge_sigma),
             &edge_loss, host_pose, target_pose, &inverse_depths[r]);
         ++result.edge_residuals;

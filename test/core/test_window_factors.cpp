@@ -101,7 +101,8 @@ TEST(WindowFactors, PhotometricJacobiansMatchCentralDifferences) {
   // sits on the flanks of both of its gradient ridges, where the gradient magnitude changes.
   const Scene scene;
   const PinholeCamera camera = testCamera();
-  const factors::HostToTarget seen(scene.host.data(), scene.target.data(), scene.rho, scene.ray, false);
+  factors::PosePairCache pair;
+  const factors::HostToTarget seen(pair.of(scene.host.data(), scene.target.data()), scene.rho, scene.ray, false);
   const Eigen::Vector2d pixel = camera.project(seen.P);
   cv::Mat gray(camera.height, camera.width, CV_8U, cv::Scalar(40));
   cv::rectangle(gray, cv::Point(static_cast<int>(pixel.x()) + 2, static_cast<int>(pixel.y()) + 2), cv::Point(camera.width, camera.height),
@@ -111,7 +112,7 @@ TEST(WindowFactors, PhotometricJacobiansMatchCentralDifferences) {
   const cv::Mat& gradient = pyramid.level(0).gradient;
   const ceres::Grid2D<float, 1> grid(gradient.ptr<float>(), 0, gradient.rows, 0, gradient.cols);
   const factors::Interpolator interpolator(grid);
-  const factors::PhotometricFactor factor(scene.ray, 5.0, interpolator, camera, 4.0);
+  const factors::PhotometricFactor factor(pair, scene.ray, 5.0, interpolator, camera, 4.0);
   const Derivatives expected = numeric(factor, scene.host, scene.target, scene.rho, 1e-6);
   EXPECT_GT(expected.host.norm(), 1.0);  // the point sees the pattern: the test is not trivial
   expectNear(analytic(factor, scene.host, scene.target, scene.rho), expected, 1e-3);
@@ -120,7 +121,8 @@ TEST(WindowFactors, PhotometricJacobiansMatchCentralDifferences) {
 TEST(WindowFactors, EdgeJacobiansMatchCentralDifferences) {
   const PinholeCamera camera = testCamera();
   const Scene scene;
-  const factors::EdgeFactor factor(scene.ray, Eigen::Vector2d(240.0, 160.0), Eigen::Vector2d(0.6, 0.8), camera, 1.0);
+  factors::PosePairCache pair;
+  const factors::EdgeFactor factor(pair, scene.ray, Eigen::Vector2d(240.0, 160.0), Eigen::Vector2d(0.6, 0.8), camera, 1.0);
   const Derivatives expected = numeric(factor, scene.host, scene.target, scene.rho, 1e-6);
   EXPECT_GT(expected.host.norm(), 1.0);
   expectNear(analytic(factor, scene.host, scene.target, scene.rho), expected, 1e-4);

@@ -12,12 +12,13 @@ namespace factors {
 /// px, with analytic derivatives. Parameters as PhotometricFactor.
 class EdgeFactor : public ceres::SizedCostFunction<1, 7, 7, 1> {
  public:
-  EdgeFactor(const Eigen::Vector3d& host_ray, const Eigen::Vector2d& match, const Eigen::Vector2d& normal,
+  /// @param pair as PhotometricFactor's
+  EdgeFactor(PosePairCache& pair, const Eigen::Vector3d& host_ray, const Eigen::Vector2d& match, const Eigen::Vector2d& normal,
              const PinholeCamera& camera, double sigma)
-      : host_ray_(host_ray), match_(match), normal_(normal), camera_(camera), sigma_(sigma) {}
+      : pair_(pair), host_ray_(host_ray), match_(match), normal_(normal), camera_(camera), sigma_(sigma) {}
 
   bool Evaluate(const double* const* parameters, double* residuals, double** jacobians) const override {
-    const HostToTarget point(parameters[0], parameters[1], parameters[2][0], host_ray_, jacobians != nullptr);
+    const HostToTarget point(pair_.of(parameters[0], parameters[1]), parameters[2][0], host_ray_, jacobians != nullptr);
     if (point.P.z() <= 1e-6) return false;
     Eigen::Matrix<double, 2, 3> d_pixel;
     const Eigen::Vector2d pixel = project(point.P, camera_.fx, camera_.fy, camera_.cx, camera_.cy, &d_pixel);
@@ -27,6 +28,7 @@ class EdgeFactor : public ceres::SizedCostFunction<1, 7, 7, 1> {
   }
 
  private:
+  PosePairCache& pair_;
   Eigen::Vector3d host_ray_;
   Eigen::Vector2d match_, normal_;
   const PinholeCamera& camera_;

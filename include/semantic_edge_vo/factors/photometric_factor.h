@@ -16,12 +16,13 @@ using Interpolator = ceres::BiCubicInterpolator<ceres::Grid2D<float, 1>>;
 /// is not a failure), analytic Jacobians. Parameters: host pose (7), target pose (7), inverse depth (1).
 class PhotometricFactor : public ceres::SizedCostFunction<1, 7, 7, 1> {
  public:
-  PhotometricFactor(const Eigen::Vector3d& host_ray, double host_value, const Interpolator& target,
+  /// @param pair shared by the factors of one (host, target) pair, outlives them
+  PhotometricFactor(PosePairCache& pair, const Eigen::Vector3d& host_ray, double host_value, const Interpolator& target,
                     const PinholeCamera& camera, double sigma)
-      : host_ray_(host_ray), host_value_(host_value), target_(target), camera_(camera), sigma_(sigma) {}
+      : pair_(pair), host_ray_(host_ray), host_value_(host_value), target_(target), camera_(camera), sigma_(sigma) {}
 
   bool Evaluate(const double* const* parameters, double* residuals, double** jacobians) const override {
-    const HostToTarget point(parameters[0], parameters[1], parameters[2][0], host_ray_, jacobians != nullptr);
+    const HostToTarget point(pair_.of(parameters[0], parameters[1]), parameters[2][0], host_ray_, jacobians != nullptr);
     if (point.P.z() <= 1e-6) return false;
     Eigen::Matrix<double, 2, 3> d_pixel;
     const Eigen::Vector2d pixel = project(point.P, camera_.fx, camera_.fy, camera_.cx, camera_.cy, &d_pixel);
@@ -34,6 +35,7 @@ class PhotometricFactor : public ceres::SizedCostFunction<1, 7, 7, 1> {
   }
 
  private:
+  PosePairCache& pair_;
   Eigen::Vector3d host_ray_;
   double host_value_;
   const Interpolator& target_;

@@ -31,6 +31,24 @@ class PoseManifold : public ceres::Manifold {
   bool MinusJacobian(const double* x, double* jacobian) const override;
 };
 
+/// The relative pose of one (host, target) keyframe pair, computed once per change of either pose:
+/// thousands of residuals share a pair, and converting both quaternions for each of them was half
+/// of the window's evaluation time. Keyed by the parameter values (Ceres evaluates candidate states
+/// from buffers of its own), so any pose change is seen; not thread-safe (the window solves on one thread).
+class PosePairCache {
+ public:
+  struct Transform {
+    Eigen::Matrix3d R_target_host;
+    Eigen::Vector3d t_target_host;  ///< host centre in the target frame: R_target_world (t_host - t_target)
+  };
+  const Transform& of(const double* host, const double* target);
+
+ private:
+  std::array<double, 14> key_{};
+  bool valid_ = false;
+  Transform transform_;
+};
+
 /// The point at a host ray (pixel on the z = 1 plane) and inverse depth rho, seen from the target,
 /// scaled by rho (homogeneous: finite at rho = 0), with its derivatives when asked for.
 struct HostToTarget {
@@ -40,7 +58,7 @@ struct HostToTarget {
   Eigen::Vector3d d_rho;                ///< dP / d rho
 
   /// @param with_derivatives false: only P (Ceres evaluates many residuals without Jacobians)
-  HostToTarget(const double* host, const double* target, double rho, const Eigen::Vector3d& host_ray, bool with_derivatives);
+  HostToTarget(const PosePairCache::Transform& pair, double rho, const Eigen::Vector3d& host_ray, bool with_derivatives);
 };
 
 /// Writes the Jacobians Ceres asks for of a residual r(P) with derivative d_residual = dr/dP: host

@@ -1,5 +1,7 @@
 #include "semantic_edge_vo/factors/pose_parameters.h"
 
+#include <algorithm>
+
 namespace semantic_edge_vo {
 namespace factors {
 
@@ -42,22 +44,29 @@ bool PoseManifold::MinusJacobian(const double*, double* jacobian) const {
   return true;
 }
 
-HostToTarget::HostToTarget(const double* host, const double* target, double rho, const Eigen::Vector3d& host_ray,
-                           bool with_derivatives) {
+const PosePairCache::Transform& PosePairCache::of(const double* host, const double* target) {
+  if (valid_ && std::equal(host, host + 7, key_.begin()) && std::equal(target, target + 7, key_.begin() + 7)) return transform_;
+  std::copy(host, host + 7, key_.begin());
+  std::copy(target, target + 7, key_.begin() + 7);
   const Eigen::Isometry3d T_world_host = fromParameters(host), T_world_target = fromParameters(target);
   const Eigen::Matrix3d R_target_world = T_world_target.linear().transpose();
-  // Homogeneous in rho: the world point times rho.
-  const Eigen::Vector3d scaled_world = T_world_host.linear() * host_ray + rho * T_world_host.translation();
-  P = R_target_world * (scaled_world - rho * T_world_target.translation());
+  transform_.R_target_host = R_target_world * T_world_host.linear();
+  transform_.t_target_host = R_target_world * (T_world_host.translation() - T_world_target.translation());
+  valid_ = true;
+  return transform_;
+}
+
+HostToTarget::HostToTarget(const PosePairCache::Transform& pair, double rho, const Eigen::Vector3d& host_ray, bool with_derivatives) {
+  // Homogeneous in rho: the point times rho.
+  P = pair.R_target_host * host_ray + rho * pair.t_target_host;
   if (!with_derivatives) return;
   // A host twist moves the point by v + w x X in the host frame (times rho: rho v + w x ray).
-  const Eigen::Matrix3d R_target_host = R_target_world * T_world_host.linear();
-  d_host.leftCols<3>() = rho * R_target_host;
-  d_host.rightCols<3>() = -R_target_host * skew(host_ray);
+  d_host.leftCols<3>() = rho * pair.R_target_host;
+  d_host.rightCols<3>() = -pair.R_target_host * skew(host_ray);
   // A target twist moves it by -(v + w x X) in the target frame.
   d_target.leftCols<3>() = -rho * Eigen::Matrix3d::Identity();
   d_target.rightCols<3>() = skew(P);
-  d_rho = R_target_world * (T_world_host.translation() - T_world_target.translation());
+  d_rho = pair.t_target_host;
 }
 
 }  // namespace factors
