@@ -128,6 +128,48 @@ TEST(WindowFactors, EdgeJacobiansMatchCentralDifferences) {
   expectNear(analytic(factor, scene.host, scene.target, scene.rho), expected, 1e-4);
 }
 
+TEST(WindowFactors, SharedPairCacheFollowsEveryPoseChange) {
+  // Factors of one keyframe pair share a cache; Ceres evaluates them at its own candidate states
+  // (other buffers, same or other values): each must see the poses it is given, in any order.
+  const PinholeCamera camera = testCamera();
+  const Scene scene;
+  const factors::PoseManifold manifold;
+  Vector6d step;
+  step << 0.05, -0.02, 0.1, 0.01, -0.02, 0.005;
+  PoseParameters moved_host, moved_target;
+  manifold.Plus(scene.host.data(), step.data(), moved_host.data());
+  manifold.Plus(scene.target.data(), (-step).eval().data(), moved_target.data());
+  const Eigen::Vector2d match1(240.0, 160.0), normal1(0.6, 0.8), match2(260.0, 150.0), normal2(0.8, -0.6);
+  const auto residual = [&](const ceres::CostFunction& factor, PoseParameters host, PoseParameters target) {
+    const double rho = scene.rho;
+    const double* parameters[] = {host.data(), target.data(), &rho};
+    double value = 0.0;
+    EXPECT_TRUE(factor.Evaluate(parameters, &value, nullptr));
+    return value;
+  };
+  /// The residual with a cache of its own, evaluated once.
+  const auto alone = [&](const Eigen::Vector2d& match, const Eigen::Vector2d& normal, const PoseParameters& host,
+                         const PoseParameters& target) {
+    factors::PosePairCache own;
+    return residual(factors::EdgeFactor(own, scene.ray, match, normal, camera, 1.0), host, target);
+  };
+  const double first_at_scene = alone(match1, normal1, scene.host, scene.target);
+  const double first_host_moved = alone(match1, normal1, moved_host, scene.target);
+  const double first_target_moved = alone(match1, normal1, scene.host, moved_target);
+  const double second_at_scene = alone(match2, normal2, scene.host, scene.target);
+  ASSERT_GT(std::abs(first_at_scene - first_host_moved), 1.0);  // the steps move the projection
+  ASSERT_GT(std::abs(first_at_scene - first_target_moved), 1.0);
+
+  factors::PosePairCache shared;
+  const factors::EdgeFactor first(shared, scene.ray, match1, normal1, camera, 1.0);
+  const factors::EdgeFactor second(shared, scene.ray, match2, normal2, camera, 1.0);
+  EXPECT_EQ(residual(first, scene.host, scene.target), first_at_scene);
+  EXPECT_EQ(residual(second, scene.host, scene.target), second_at_scene);
+  EXPECT_EQ(residual(first, moved_host, scene.target), first_host_moved);
+  EXPECT_EQ(residual(first, scene.host, moved_target), first_target_moved);
+  EXPECT_EQ(residual(second, scene.host, scene.target), second_at_scene);
+}
+
 /// Residual of a factor over two poses, with its Jacobians when asked for.
 template <int N>
 Eigen::Matrix<double, N, 1> evaluatePair(const ceres::CostFunction& factor, const PoseParameters& earlier, const PoseParameters& later,
