@@ -144,7 +144,7 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_SCHUR;
   solver.max_num_iterations = options_.max_iterations;
-  solver.num_threads = 1;  // deterministic
+  solver.num_threads = 1;  // deterministic, and the pose-pair caches are not thread-safe
   // With bounds (the inverse depths'), Ceres follows each step with a projected line search that
   // evaluates the Jacobians again: 40 % of the solve. The bound is still kept by projection.
   solver.max_num_line_search_step_size_iterations = 0;
