@@ -2,11 +2,14 @@
 
 #include <sstream>
 
-#include "semantic_edge_vo/factors/edge_factor.h"
+#include <ceres/loss_function.h>
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+
 #include "semantic_edge_vo/factors/relative_rotation_factor.h"
 #include "semantic_edge_vo/factors/travel_direction_factor.h"
-#include "semantic_edge_vo/factors/inverse_depth_prior.h"
-#include "semantic_edge_vo/factors/photometric_factor.h"
+#include "semantic_edge_vo/factors/window_observations.h"
+#include "semantic_edge_vo/parallel_slices.h"
 
 namespace semantic_edge_vo {
 namespace {
@@ -50,24 +53,30 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
   std::vector<factors::PoseParameters> poses;
   std::vector<std::unique_ptr<ceres::Grid2D<float, 1>>> grids;
   std::vector<std::unique_ptr<factors::Interpolator>> interpolators;
+  std::vector<const factors::Interpolator*> images;
   for (std::size_t k = first; k < window.size(); ++k) {
     poses.push_back(factors::toParameters(window[k]->T_world_cam));
     const cv::Mat& gradient = window[k]->frame->pyramid->level(0).gradient;
     CV_Assert(gradient.isContinuous());
     grids.push_back(std::make_unique<ceres::Grid2D<float, 1>>(gradient.ptr<float>(), 0, gradient.rows, 0, gradient.cols));
     interpolators.push_back(std::make_unique<factors::Interpolator>(*grids.back()));
+    images.push_back(interpolators.back().get());
   }
   const PinholeCamera& camera = window[first]->frame->pyramid->level(0).camera;
-  std::vector<factors::PosePairCache> pair_caches(count * count);  // [host * count + target]
+  factors::ObservationWeights weights;
+  weights.photometric_sigma = options_.photometric_sigma;
+  weights.photometric_huber = options_.photometric_huber;
+  weights.edge_sigma = options_.edge_sigma;
+  weights.edge_huber = options_.edge_huber;
+  weights.edge_weight = options_.edge_weight;
+  factors::WindowObservations observations(poses, images, camera, weights);
 
-  // One loss object per kind of residual, shared by all of them (the problem does not own them):
-  // a window has tens of thousands of residuals.
+  // One loss object shared by the measured-motion residuals (the problem does not own it).
   constexpr double kMeasuredMotionHuber = 3.0;  // sigmas: a measurement far off (corners on traffic) pulls with a bounded force
   ceres::HuberLoss measured_motion_loss(kMeasuredMotionHuber);
-  ceres::HuberLoss photometric_loss(options_.photometric_huber / options_.photometric_sigma);
-  ceres::ScaledLoss edge_loss(new ceres::HuberLoss(options_.edge_huber / options_.edge_sigma), options_.edge_weight, ceres::TAKE_OWNERSHIP);
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.evaluation_callback = &observations;
   ceres::Problem problem(problem_options);
   for (factors::PoseParameters& pose : poses) problem.AddParameterBlock(pose.data(), 7, new factors::PoseManifold());
   problem.SetParameterBlockConstant(poses[0].data());
@@ -101,50 +110,66 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
     for (std::size_t i = 0; i < window[first + h]->points.size(); i += static_cast<std::size_t>(options_.point_stride))
       if (window[first + h]->points[i].hasDepth()) refs.push_back({h, i});
   inverse_depths.resize(refs.size());
+  std::vector<Eigen::Isometry3d> T_target_host(count * count);  // [host * count + target]
+  for (std::size_t h = 0; h < count; ++h)
+    for (std::size_t t = 0; t < count; ++t) T_target_host[h * count + t] = window[first + t]->T_world_cam.inverse() * window[first + h]->T_world_cam;
 
-  for (std::size_t r = 0; r < refs.size(); ++r) {
+  // Each point's observations (projection, nearest edge of a shared class) on both cores, in slots
+  // of their own; then added to the problem in order.
+  const std::size_t slots = count - 1;
+  std::vector<factors::Observation> found(refs.size() * slots);
+  std::vector<std::size_t> found_count(refs.size(), 0);
+  forEachIndex(refs.size(), [&](std::size_t r) {
     const Keyframe& host = *window[first + refs[r].host];
     const MapPoint& point = host.points[refs[r].index];
     inverse_depths[r] = point.inverse_depth;
-    const Eigen::Vector3d ray = camera.backProject(point.u, point.v, 1.0);
-    const double host_value = sampleBilinear(host.frame->pyramid->level(0).gradient, point.u, point.v);
-    int observed = 0;
+    factors::Observation observation;
+    observation.host = static_cast<int>(refs[r].host);
+    observation.host_ray = camera.backProject(point.u, point.v, 1.0);
+    observation.host_value = sampleBilinear(host.frame->pyramid->level(0).gradient, point.u, point.v);
+    observation.inverse_depth = &inverse_depths[r];
+    observation.prior = point.inverse_depth;
+    observation.prior_sigma = options_.depth_prior_scale * std::sqrt(point.inverse_depth_variance);
+    const Eigen::Vector3d X_host = camera.backProject(point.u, point.v, 1.0 / point.inverse_depth);
     for (std::size_t t = 0; t < count; ++t) {
       if (t == refs[r].host) continue;
       const Keyframe& target = *window[first + t];
-      const Eigen::Vector3d p = target.T_world_cam.inverse() * host.T_world_cam * camera.backProject(point.u, point.v, 1.0 / point.inverse_depth);
+      const Eigen::Vector3d p = T_target_host[refs[r].host * count + t] * X_host;
       if (p.z() <= 1e-3) continue;
       const Eigen::Vector2d pixel = camera.project(p);
       if (!camera.contains(pixel.x(), pixel.y(), 4.0)) continue;
-      double* host_pose = poses[refs[r].host].data();
-      double* target_pose = poses[t].data();
-      factors::PosePairCache& pair = pair_caches[refs[r].host * count + t];
-      problem.AddResidualBlock(new factors::PhotometricFactor(pair, ray, host_value, *interpolators[t], camera, options_.photometric_sigma),
-                               &photometric_loss, host_pose, target_pose, &inverse_depths[r]);
-      ++result.photometric_residuals;
-      ++observed;
+      observation.target = static_cast<int>(t);
+      observation.has_prior = found_count[r] == 0;  // the point's first observation carries its prior
       FieldMatch match;
-      if (point.isEdge() && options_.edge_weight > 0.0 && target.frame->has_field &&
-          associate(target.frame->field, point.class_mask, pixel, options_.edge_radius, &match)) {
-        problem.AddResidualBlock(
-            new factors::EdgeFactor(pair, ray, Eigen::Vector2d(match.u, match.v), Eigen::Vector2d(match.normal_x, match.normal_y), camera,
-                                    options_.edge_sigma),
-            &edge_loss, host_pose, target_pose, &inverse_depths[r]);
-        ++result.edge_residuals;
+      observation.has_edge = point.isEdge() && options_.edge_weight > 0.0 && target.frame->has_field &&
+                             associate(target.frame->field, point.class_mask, pixel, options_.edge_radius, &match);
+      if (observation.has_edge) {
+        observation.match = Eigen::Vector2d(match.u, match.v);
+        observation.normal = Eigen::Vector2d(match.normal_x, match.normal_y);
       }
+      found[r * slots + found_count[r]++] = observation;
     }
-    if (observed == 0) continue;
-    const double prior_sigma = options_.depth_prior_scale * std::sqrt(point.inverse_depth_variance);
-    problem.AddResidualBlock(factors::InverseDepthPrior::Create(point.inverse_depth, prior_sigma), nullptr, &inverse_depths[r]);
+  });
+  observations.reserve(refs.size() * slots);
+  for (std::size_t r = 0; r < refs.size(); ++r) {
+    if (found_count[r] == 0) continue;
+    for (std::size_t k = 0; k < found_count[r]; ++k) {
+      const factors::Observation& observation = found[r * slots + k];
+      problem.AddResidualBlock(observations.add(observation), nullptr, poses[static_cast<std::size_t>(observation.host)].data(),
+                               poses[static_cast<std::size_t>(observation.target)].data(), &inverse_depths[r]);
+      ++result.photometric_residuals;
+      result.edge_residuals += observation.has_edge;
+    }
     problem.SetParameterLowerBound(&inverse_depths[r], 0, 1e-4);
     ++result.points;
   }
   if (result.photometric_residuals == 0) return result;
+  problem.AddResidualBlock(observations.remainderBlock(), nullptr, poses.back().data());  // the newest pose is never held
 
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_SCHUR;
   solver.max_num_iterations = options_.max_iterations;
-  solver.num_threads = 1;  // deterministic, and the pose-pair caches are not thread-safe
+  solver.num_threads = 1;  // deterministic: the observations are evaluated on both cores by the callback
   // With bounds (the inverse depths'), Ceres follows each step with a projected line search that
   // evaluates the Jacobians again: 40 % of the solve. The bound is still kept by projection.
   solver.max_num_line_search_step_size_iterations = 0;

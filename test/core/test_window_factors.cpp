@@ -1,71 +1,19 @@
-// The window optimiser's analytic Jacobians against central differences through the pose manifold.
+// The window optimiser's residuals: analytic Jacobians against central differences through the pose
+// manifold, the robust rows against Ceres' Huber loss, the shared evaluation at every point Ceres asks for.
 #include <gtest/gtest.h>
 
+#include <ceres/loss_function.h>
 #include <opencv2/imgproc.hpp>
 
-#include "semantic_edge_vo/factors/edge_factor.h"
 #include "semantic_edge_vo/factors/relative_rotation_factor.h"
 #include "semantic_edge_vo/factors/travel_direction_factor.h"
-#include "semantic_edge_vo/factors/photometric_factor.h"
+#include "semantic_edge_vo/factors/window_observations.h"
 #include "semantic_edge_vo/image_pyramid.h"
 
 namespace semantic_edge_vo {
 namespace {
 
 using factors::PoseParameters;
-
-/// Residual and Jacobians of a 1-residual factor over (host pose, target pose, inverse depth); the
-/// numeric ones perturb the poses through PoseManifold::Plus, like the solver.
-struct Derivatives {
-  Eigen::Matrix<double, 1, 6> host, target;
-  double rho = 0.0;
-};
-
-Derivatives analytic(const ceres::CostFunction& factor, PoseParameters host, PoseParameters target, double rho) {
-  const double* parameters[] = {host.data(), target.data(), &rho};
-  double residual = 0.0;
-  Eigen::Matrix<double, 1, 7> j_host, j_target;
-  double j_rho = 0.0;
-  double* jacobians[] = {j_host.data(), j_target.data(), &j_rho};
-  EXPECT_TRUE(factor.Evaluate(parameters, &residual, jacobians));
-  EXPECT_EQ(j_host(6), 0.0);
-  EXPECT_EQ(j_target(6), 0.0);
-  return {j_host.head<6>(), j_target.head<6>(), j_rho};
-}
-
-Derivatives numeric(const ceres::CostFunction& factor, const PoseParameters& host, const PoseParameters& target, double rho,
-                    double step) {
-  const auto residual = [&](const PoseParameters& h, const PoseParameters& t, double r) {
-    const double* parameters[] = {h.data(), t.data(), &r};
-    double value = 0.0;
-    EXPECT_TRUE(factor.Evaluate(parameters, &value, nullptr));
-    return value;
-  };
-  const factors::PoseManifold manifold;
-  Derivatives result;
-  for (int i = 0; i < 6; ++i) {
-    Vector6d delta = Vector6d::Zero();
-    delta(i) = step;
-    PoseParameters plus, minus;
-    manifold.Plus(host.data(), delta.data(), plus.data());
-    manifold.Plus(host.data(), (-delta).eval().data(), minus.data());
-    result.host(i) = (residual(plus, target, rho) - residual(minus, target, rho)) / (2 * step);
-    manifold.Plus(target.data(), delta.data(), plus.data());
-    manifold.Plus(target.data(), (-delta).eval().data(), minus.data());
-    result.target(i) = (residual(host, plus, rho) - residual(host, minus, rho)) / (2 * step);
-  }
-  const double rho_step = step * rho;
-  result.rho = (residual(host, target, rho + rho_step) - residual(host, target, rho - rho_step)) / (2 * rho_step);
-  return result;
-}
-
-void expectNear(const Derivatives& a, const Derivatives& b, double tolerance) {
-  for (int i = 0; i < 6; ++i) {
-    EXPECT_NEAR(a.host(i), b.host(i), tolerance * (1.0 + std::abs(b.host(i)))) << "host " << i;
-    EXPECT_NEAR(a.target(i), b.target(i), tolerance * (1.0 + std::abs(b.target(i)))) << "target " << i;
-  }
-  EXPECT_NEAR(a.rho, b.rho, tolerance * (1.0 + std::abs(b.rho)));
-}
 
 PinholeCamera testCamera() {
   PinholeCamera camera = kittiCamera();
@@ -96,78 +44,198 @@ struct Scene {
   }
 };
 
-TEST(WindowFactors, PhotometricJacobiansMatchCentralDifferences) {
-  // A blurred bright rectangle whose corner lies 2 px right of and below the projection: the point
-  // sits on the flanks of both of its gradient ridges, where the gradient magnitude changes.
-  const Scene scene;
-  const PinholeCamera camera = testCamera();
-  factors::PosePairCache pair;
-  const factors::HostToTarget seen(pair.of(scene.host.data(), scene.target.data()), scene.rho, scene.ray, false);
-  const Eigen::Vector2d pixel = camera.project(seen.P);
-  cv::Mat gray(camera.height, camera.width, CV_8U, cv::Scalar(40));
-  cv::rectangle(gray, cv::Point(static_cast<int>(pixel.x()) + 2, static_cast<int>(pixel.y()) + 2), cv::Point(camera.width, camera.height),
-                cv::Scalar(220), cv::FILLED);
-  cv::GaussianBlur(gray, gray, cv::Size(0, 0), 2.5);
-  const ImagePyramid pyramid(gray, camera, 1);
-  const cv::Mat& gradient = pyramid.level(0).gradient;
-  const ceres::Grid2D<float, 1> grid(gradient.ptr<float>(), 0, gradient.rows, 0, gradient.cols);
-  const factors::Interpolator interpolator(grid);
-  const factors::PhotometricFactor factor(pair, scene.ray, 5.0, interpolator, camera, 4.0);
-  const Derivatives expected = numeric(factor, scene.host, scene.target, scene.rho, 1e-6);
-  EXPECT_GT(expected.host.norm(), 1.0);  // the point sees the pattern: the test is not trivial
-  expectNear(analytic(factor, scene.host, scene.target, scene.rho), expected, 1e-3);
+/// The scene's point observed in its target keyframe through WindowObservations, as the window
+/// sets it up: the poses, depth and images are the solver's parameter memory, changed in place.
+class ObservedScene {
+ public:
+  static constexpr int kRows = 3;  // photometric, edge, prior
+
+  /// @param edge_offset px from the projection to the edge along its normal
+  explicit ObservedScene(double edge_offset = 1.0) : poses_{scene_.host, scene_.target}, rho_(scene_.rho) {
+    // A blurred bright rectangle whose corner lies 2 px right of and below the projection: the point
+    // sits on the flanks of both of its gradient ridges, where the gradient magnitude changes.
+    const PinholeCamera camera = testCamera();
+    const Eigen::Vector2d pixel = projection();
+    cv::Mat gray(camera.height, camera.width, CV_8U, cv::Scalar(40));
+    cv::rectangle(gray, cv::Point(static_cast<int>(pixel.x()) + 2, static_cast<int>(pixel.y()) + 2), cv::Point(camera.width, camera.height),
+                  cv::Scalar(220), cv::FILLED);
+    cv::GaussianBlur(gray, gray, cv::Size(0, 0), 2.5);
+    pyramid_ = std::make_unique<ImagePyramid>(gray, camera, 1);
+    const cv::Mat& gradient = pyramid_->level(0).gradient;
+    grid_ = std::make_unique<ceres::Grid2D<float, 1>>(gradient.ptr<float>(), 0, gradient.rows, 0, gradient.cols);
+    image_ = std::make_unique<factors::Interpolator>(*grid_);
+    observations_ = std::make_unique<factors::WindowObservations>(poses_, std::vector<const factors::Interpolator*>{image_.get(), image_.get()},
+                                                                  camera, factors::ObservationWeights());
+    factors::Observation observation;
+    observation.host = 0;
+    observation.target = 1;
+    observation.host_ray = scene_.ray;
+    observation.host_value = 5.0;
+    observation.inverse_depth = &rho_;
+    observation.has_edge = true;
+    observation.normal = Eigen::Vector2d(0.6, 0.8);
+    observation.match = pixel - edge_offset * observation.normal;
+    observation.has_prior = true;
+    observation.prior = 1.1 * scene_.rho;
+    observation.prior_sigma = 0.01;
+    factor_.reset(observations_->add(observation));
+  }
+
+  /// The point's pixel in the target keyframe at the current poses.
+  Eigen::Vector2d projection() const {
+    return testCamera().project(factors::fromParameters(poses_[1].data()).inverse() * factors::fromParameters(poses_[0].data()) *
+                                (scene_.ray / rho_));
+  }
+
+  using Rows = Eigen::Matrix<double, kRows, 1>;
+  struct Jacobians {
+    Eigen::Matrix<double, kRows, 7, Eigen::RowMajor> host, target;
+    Rows rho;
+  };
+
+  /// The rows at the current parameters as Ceres gets them: the callback first, then the factor.
+  Rows evaluate(bool evaluate_jacobians, bool new_point = true, Jacobians* jacobians = nullptr) {
+    observations_->PrepareForEvaluation(evaluate_jacobians, new_point);
+    const double* parameters[] = {poses_[0].data(), poses_[1].data(), &rho_};
+    Rows rows;
+    double* blocks[] = {jacobians ? jacobians->host.data() : nullptr, jacobians ? jacobians->target.data() : nullptr,
+                        jacobians ? jacobians->rho.data() : nullptr};
+    EXPECT_TRUE(factor_->Evaluate(parameters, rows.data(), jacobians ? blocks : nullptr));
+    return rows;
+  }
+
+  /// Central differences of the rows through PoseManifold::Plus (host, target) and the depth.
+  Jacobians numeric(double step) {
+    const factors::PoseManifold manifold;
+    Jacobians result;
+    result.host.setZero();
+    result.target.setZero();
+    for (int pose = 0; pose < 2; ++pose)
+      for (int i = 0; i < 6; ++i) {
+        const PoseParameters at = poses_[pose];
+        Vector6d delta = Vector6d::Zero();
+        delta(i) = step;
+        manifold.Plus(at.data(), delta.data(), poses_[pose].data());
+        const Rows plus = evaluate(false);
+        manifold.Plus(at.data(), (-delta).eval().data(), poses_[pose].data());
+        const Rows minus = evaluate(false);
+        poses_[pose] = at;
+        (pose == 0 ? result.host : result.target).col(i) = (plus - minus) / (2 * step);
+      }
+    const double at = rho_, rho_step = step * rho_;
+    rho_ = at + rho_step;
+    const Rows plus = evaluate(false);
+    rho_ = at - rho_step;
+    const Rows minus = evaluate(false);
+    rho_ = at;
+    result.rho = (plus - minus) / (2 * rho_step);
+    return result;
+  }
+
+  std::vector<PoseParameters>& poses() { return poses_; }
+  /// The remainder block's row at the last evaluation.
+  double remainderRow() const {
+    const std::unique_ptr<ceres::CostFunction> block(observations_->remainderBlock());
+    const double* parameters[] = {poses_[1].data()};
+    double row = -1.0;
+    EXPECT_TRUE(block->Evaluate(parameters, &row, nullptr));
+    return row;
+  }
+
+ private:
+  Scene scene_;
+  std::vector<PoseParameters> poses_;
+  double rho_;
+  std::unique_ptr<ImagePyramid> pyramid_;
+  std::unique_ptr<ceres::Grid2D<float, 1>> grid_;
+  std::unique_ptr<factors::Interpolator> image_;
+  std::unique_ptr<factors::WindowObservations> observations_;
+  std::unique_ptr<ceres::CostFunction> factor_;
+};
+
+TEST(WindowFactors, ObservationJacobiansMatchCentralDifferences) {
+  ObservedScene observed;  // every row within its Huber threshold: the rows are the residuals
+  ObservedScene::Jacobians analytic;
+  const ObservedScene::Rows rows = observed.evaluate(true, true, &analytic);
+  const ObservedScene::Jacobians expected = observed.numeric(1e-6);
+  EXPECT_GT(expected.host.row(0).norm(), 1.0);  // the point sees the pattern: the test is not trivial
+  EXPECT_LT(std::abs(rows(0)), 9.0 / 4.0);
+  EXPECT_NEAR(rows(1), std::sqrt(0.5) * 1.0, 1e-6);       // 1 px at the edge weight 0.5
+  EXPECT_NEAR(rows(2), -0.1 * (1.0 / 12.0) / 0.01, 1e-9);  // (rho - 1.1 rho) / sigma
+  EXPECT_EQ(observed.remainderRow(), 0.0);
+  EXPECT_EQ(analytic.host.col(6).norm(), 0.0);
+  EXPECT_EQ(analytic.target.col(6).norm(), 0.0);
+  for (int row = 0; row < ObservedScene::kRows; ++row) {
+    for (int i = 0; i < 6; ++i) {
+      EXPECT_NEAR(analytic.host(row, i), expected.host(row, i), 1e-3 * (1.0 + std::abs(expected.host(row, i)))) << row << " host " << i;
+      EXPECT_NEAR(analytic.target(row, i), expected.target(row, i), 1e-3 * (1.0 + std::abs(expected.target(row, i)))) << row << " target " << i;
+    }
+    EXPECT_NEAR(analytic.rho(row), expected.rho(row), 1e-3 * (1.0 + std::abs(expected.rho(row)))) << row;
+  }
+  EXPECT_EQ(expected.host.row(2).norm() + expected.target.row(2).norm(), 0.0);  // the prior is on the depth alone
 }
 
-TEST(WindowFactors, EdgeJacobiansMatchCentralDifferences) {
-  const PinholeCamera camera = testCamera();
-  const Scene scene;
-  factors::PosePairCache pair;
-  const factors::EdgeFactor factor(pair, scene.ray, Eigen::Vector2d(240.0, 160.0), Eigen::Vector2d(0.6, 0.8), camera, 1.0);
-  const Derivatives expected = numeric(factor, scene.host, scene.target, scene.rho, 1e-6);
-  EXPECT_GT(expected.host.norm(), 1.0);
-  expectNear(analytic(factor, scene.host, scene.target, scene.rho), expected, 1e-4);
+TEST(WindowFactors, AnOutlierRowIsReweightedAndItsCostKept) {
+  // The edge 3 px away, twice the Huber threshold: its row and Jacobian are the residual's scaled by
+  // sqrt(rho'), as Ceres' loss functions present them, and the remainder block carries the rest.
+  ObservedScene inlier(1.0), outlier(3.0);
+  ObservedScene::Jacobians near, far;
+  inlier.evaluate(true, true, &near);
+  const ObservedScene::Rows rows = outlier.evaluate(true, true, &far);
+  const double w = 0.5, k = 1.5, r = 3.0;
+  const double scale = std::sqrt(w * k / r);
+  EXPECT_NEAR(rows(1), scale * r, 1e-6);
+  // The same projection: only the match moved, so the raw residual's derivatives are the same.
+  const double ratio = scale / std::sqrt(w);
+  EXPECT_LT((far.host.row(1) - ratio * near.host.row(1)).norm(), 1e-9 * (1.0 + near.host.row(1).norm()));
+  EXPECT_LT((far.target.row(1) - ratio * near.target.row(1)).norm(), 1e-9 * (1.0 + near.target.row(1).norm()));
+  EXPECT_EQ(far.host.row(0), near.host.row(0));
+  // Half the squares of the row and of the remainder block: the robust cost, w (2 k r - k^2) / 2.
+  const double remainder = outlier.remainderRow();
+  EXPECT_NEAR(0.5 * (rows(1) * rows(1) + remainder * remainder), 0.5 * w * (2 * k * r - k * k), 1e-9);
 }
 
-TEST(WindowFactors, SharedPairCacheFollowsEveryPoseChange) {
-  // Factors of one keyframe pair share a cache; Ceres evaluates them at its own candidate states
-  // (other buffers, same or other values): each must see the poses it is given, in any order.
-  const PinholeCamera camera = testCamera();
-  const Scene scene;
+TEST(WindowFactors, RobustRowIsCeresHuberLoss) {
+  // Ceres' cost (rho), its IRLS weight (rho') and so its gradient, for every residual.
+  const double k = 1.5;
+  for (const double w : {1.0, 0.5}) {
+    const ceres::ScaledLoss loss(new ceres::HuberLoss(k), w, ceres::TAKE_OWNERSHIP);
+    for (const double r : {-7.0, -1.6, -0.3, 0.0, 1.0, 1.5, 2.5, 40.0}) {
+      double rho[3];
+      loss.Evaluate(r * r, rho);
+      const factors::RobustRow row = factors::robustRow(r, k, w);
+      EXPECT_NEAR(row.residual * row.residual + row.remainder, rho[0], 1e-12 * (1.0 + rho[0])) << r;
+      EXPECT_NEAR(row.scale * row.scale, rho[1], 1e-12) << r;
+      EXPECT_NEAR(row.residual, row.scale * r, 1e-12 * (1.0 + std::abs(r))) << r;
+      EXPECT_EQ(row.remainder == 0.0, std::abs(r) <= k) << r;
+    }
+  }
+}
+
+TEST(WindowFactors, ObservationsFollowEveryEvaluationPoint) {
+  // Ceres evaluates candidate points, goes back, and asks for Jacobians at a point it evaluated
+  // without: each time the rows must be those of the parameters it set.
   const factors::PoseManifold manifold;
   Vector6d step;
   step << 0.05, -0.02, 0.1, 0.01, -0.02, 0.005;
-  PoseParameters moved_host, moved_target;
-  manifold.Plus(scene.host.data(), step.data(), moved_host.data());
-  manifold.Plus(scene.target.data(), (-step).eval().data(), moved_target.data());
-  const Eigen::Vector2d match1(240.0, 160.0), normal1(0.6, 0.8), match2(260.0, 150.0), normal2(0.8, -0.6);
-  const auto residual = [&](const ceres::CostFunction& factor, PoseParameters host, PoseParameters target) {
-    const double rho = scene.rho;
-    const double* parameters[] = {host.data(), target.data(), &rho};
-    double value = 0.0;
-    EXPECT_TRUE(factor.Evaluate(parameters, &value, nullptr));
-    return value;
-  };
-  /// The residual with a cache of its own, evaluated once.
-  const auto alone = [&](const Eigen::Vector2d& match, const Eigen::Vector2d& normal, const PoseParameters& host,
-                         const PoseParameters& target) {
-    factors::PosePairCache own;
-    return residual(factors::EdgeFactor(own, scene.ray, match, normal, camera, 1.0), host, target);
-  };
-  const double first_at_scene = alone(match1, normal1, scene.host, scene.target);
-  const double first_host_moved = alone(match1, normal1, moved_host, scene.target);
-  const double first_target_moved = alone(match1, normal1, scene.host, moved_target);
-  const double second_at_scene = alone(match2, normal2, scene.host, scene.target);
-  ASSERT_GT(std::abs(first_at_scene - first_host_moved), 1.0);  // the steps move the projection
-  ASSERT_GT(std::abs(first_at_scene - first_target_moved), 1.0);
+  ObservedScene observed;
+  const ObservedScene::Rows at_scene = observed.evaluate(false);
+  const PoseParameters host = observed.poses()[0];
+  manifold.Plus(host.data(), step.data(), observed.poses()[0].data());
+  const ObservedScene::Rows moved = observed.evaluate(false);
+  ASSERT_GT((moved - at_scene).norm(), 0.5);  // the step moves the projection
+  ObservedScene fresh;  // the same scene, evaluated only at the moved point
+  fresh.poses()[0] = observed.poses()[0];
+  EXPECT_EQ(fresh.evaluate(false), moved);
+  observed.poses()[0] = host;
+  EXPECT_EQ(observed.evaluate(false), at_scene);
 
-  factors::PosePairCache shared;
-  const factors::EdgeFactor first(shared, scene.ray, match1, normal1, camera, 1.0);
-  const factors::EdgeFactor second(shared, scene.ray, match2, normal2, camera, 1.0);
-  EXPECT_EQ(residual(first, scene.host, scene.target), first_at_scene);
-  EXPECT_EQ(residual(second, scene.host, scene.target), second_at_scene);
-  EXPECT_EQ(residual(first, moved_host, scene.target), first_host_moved);
-  EXPECT_EQ(residual(first, scene.host, moved_target), first_target_moved);
-  EXPECT_EQ(residual(second, scene.host, scene.target), second_at_scene);
+  ObservedScene::Jacobians later, direct;
+  EXPECT_EQ(observed.evaluate(true, false, &later), at_scene);  // Jacobians after a residual-only evaluation there
+  ObservedScene reference;
+  reference.evaluate(true, true, &direct);
+  EXPECT_EQ(later.host, direct.host);
+  EXPECT_EQ(later.rho, direct.rho);
 }
 
 /// Residual of a factor over two poses, with its Jacobians when asked for.

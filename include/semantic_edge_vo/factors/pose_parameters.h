@@ -31,23 +31,12 @@ class PoseManifold : public ceres::Manifold {
   bool MinusJacobian(const double* x, double* jacobian) const override;
 };
 
-/// The relative pose of one (host, target) keyframe pair, computed once per change of either pose:
-/// thousands of residuals share a pair, and converting both quaternions for each of them was half
-/// of the window's evaluation time. Keyed by the parameter values (Ceres evaluates candidate states
-/// from buffers of its own), so any pose change is seen; not thread-safe (the window solves on one thread).
-class PosePairCache {
- public:
-  struct Transform {
-    Eigen::Matrix3d R_target_host;
-    Eigen::Vector3d t_target_host;  ///< host centre in the target frame: R_target_world (t_host - t_target)
-  };
-  const Transform& of(const double* host, const double* target);
-
- private:
-  std::array<double, 14> key_{};
-  bool valid_ = false;
-  Transform transform_;
+/// The relative pose of a (host, target) keyframe pair.
+struct PairTransform {
+  Eigen::Matrix3d R_target_host;
+  Eigen::Vector3d t_target_host;  ///< host centre in the target frame: R_target_world (t_host - t_target)
 };
+PairTransform pairTransform(const double* host, const double* target);
 
 /// The point at a host ray (pixel on the z = 1 plane) and inverse depth rho, seen from the target,
 /// scaled by rho (homogeneous: finite at rho = 0), with its derivatives when asked for.
@@ -58,20 +47,8 @@ struct HostToTarget {
   Eigen::Vector3d d_rho;                ///< dP / d rho
 
   /// @param with_derivatives false: only P (Ceres evaluates many residuals without Jacobians)
-  HostToTarget(const PosePairCache::Transform& pair, double rho, const Eigen::Vector3d& host_ray, bool with_derivatives);
+  HostToTarget(const PairTransform& pair, double rho, const Eigen::Vector3d& host_ray, bool with_derivatives);
 };
-
-/// Writes the Jacobians Ceres asks for of a residual r(P) with derivative d_residual = dr/dP: host
-/// and target poses as 1 x 7 rows (tangent part and the zero pad), then the inverse depth.
-inline void writeJacobians(const HostToTarget& point, const Eigen::RowVector3d& d_residual, double** jacobians) {
-  for (int block = 0; block < 2; ++block) {
-    if (!jacobians[block]) continue;  // a constant pose
-    Eigen::Map<Eigen::Matrix<double, 1, 7>> row(jacobians[block]);
-    row.head<6>() = d_residual * (block == 0 ? point.d_host : point.d_target);
-    row(6) = 0.0;
-  }
-  if (jacobians[2]) jacobians[2][0] = d_residual.dot(point.d_rho);
-}
 
 /// Pixel of a (scaled) camera point and its derivative.
 inline Eigen::Vector2d project(const Eigen::Vector3d& P, double fx, double fy, double cx, double cy,

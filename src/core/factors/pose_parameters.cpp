@@ -44,19 +44,13 @@ bool PoseManifold::MinusJacobian(const double*, double* jacobian) const {
   return true;
 }
 
-const PosePairCache::Transform& PosePairCache::of(const double* host, const double* target) {
-  if (valid_ && std::equal(host, host + 7, key_.begin()) && std::equal(target, target + 7, key_.begin() + 7)) return transform_;
-  std::copy(host, host + 7, key_.begin());
-  std::copy(target, target + 7, key_.begin() + 7);
+PairTransform pairTransform(const double* host, const double* target) {
   const Eigen::Isometry3d T_world_host = fromParameters(host), T_world_target = fromParameters(target);
   const Eigen::Matrix3d R_target_world = T_world_target.linear().transpose();
-  transform_.R_target_host = R_target_world * T_world_host.linear();
-  transform_.t_target_host = R_target_world * (T_world_host.translation() - T_world_target.translation());
-  valid_ = true;
-  return transform_;
+  return {R_target_world * T_world_host.linear(), R_target_world * (T_world_host.translation() - T_world_target.translation())};
 }
 
-HostToTarget::HostToTarget(const PosePairCache::Transform& pair, double rho, const Eigen::Vector3d& host_ray, bool with_derivatives) {
+HostToTarget::HostToTarget(const PairTransform& pair, double rho, const Eigen::Vector3d& host_ray, bool with_derivatives) {
   // Homogeneous in rho: the point times rho.
   P = pair.R_target_host * host_ray + rho * pair.t_target_host;
   if (!with_derivatives) return;
