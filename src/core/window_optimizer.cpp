@@ -1,5 +1,6 @@
 #include "semantic_edge_vo/window_optimizer.h"
 
+#include <numeric>
 #include <sstream>
 
 #include <ceres/loss_function.h>
@@ -150,7 +151,7 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
       found[r * slots + found_count[r]++] = observation;
     }
   });
-  observations.reserve(refs.size() * slots);
+  observations.reserve(std::accumulate(found_count.begin(), found_count.end(), std::size_t{0}));
   for (std::size_t r = 0; r < refs.size(); ++r) {
     if (found_count[r] == 0) continue;
     for (std::size_t k = 0; k < found_count[r]; ++k) {

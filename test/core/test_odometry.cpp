@@ -243,8 +243,8 @@ TEST(Odometry, AVanCrossingInFrontOfTheCarStandingAtALightLeavesTheMapItHad) {
   ASSERT_EQ(run.poses.size(), static_cast<std::size_t>(kStopFrames)) << "every frame gets a pose";
   expectLostOnlyWhileBlinded(run, standing.front() + kBlindedIntoStop, kBlindedFrames);
   // Measured: 0.116 and 0.150 m over the 7.1 m after the stop (1.6 and 2.1 %) with two versions of
-  // the window that differ only in rounding (one Ceres block per residual, or per observation); a
-  // new map at its own scale would be metres off.
+  // the window that differ only in their rounding path (one Ceres block per residual, or per
+  // observation); a new map at its own scale would be metres off.
   expectContinuousAcross(run, "a view blocked while standing", standing.front(), 0.03);
 }
 

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <ceres/loss_function.h>
+#include <ceres/crs_matrix.h>
+#include <ceres/problem.h>
 #include <opencv2/imgproc.hpp>
 
 #include "semantic_edge_vo/factors/relative_rotation_factor.h"
@@ -51,7 +53,8 @@ class ObservedScene {
   static constexpr int kRows = 3;  // photometric, edge, prior
 
   /// @param edge_offset px from the projection to the edge along its normal
-  explicit ObservedScene(double edge_offset = 1.0) : poses_{scene_.host, scene_.target}, rho_(scene_.rho) {
+  explicit ObservedScene(double edge_offset = 1.0, const factors::ObservationWeights& weights = factors::ObservationWeights())
+      : poses_{scene_.host, scene_.target}, rho_(scene_.rho) {
     // A blurred bright rectangle whose corner lies 2 px right of and below the projection: the point
     // sits on the flanks of both of its gradient ridges, where the gradient magnitude changes.
     const PinholeCamera camera = testCamera();
@@ -65,7 +68,7 @@ class ObservedScene {
     grid_ = std::make_unique<ceres::Grid2D<float, 1>>(gradient.ptr<float>(), 0, gradient.rows, 0, gradient.cols);
     image_ = std::make_unique<factors::Interpolator>(*grid_);
     observations_ = std::make_unique<factors::WindowObservations>(poses_, std::vector<const factors::Interpolator*>{image_.get(), image_.get()},
-                                                                  camera, factors::ObservationWeights());
+                                                                  camera, weights);
     factors::Observation observation;
     observation.host = 0;
     observation.target = 1;
@@ -133,6 +136,9 @@ class ObservedScene {
   }
 
   std::vector<PoseParameters>& poses() { return poses_; }
+  double* inverseDepth() { return &rho_; }
+  factors::WindowObservations& observations() { return *observations_; }
+  const ceres::CostFunction& factor() const { return *factor_; }
   /// The remainder block's row at the last evaluation.
   double remainderRow() const {
     const std::unique_ptr<ceres::CostFunction> block(observations_->remainderBlock());
@@ -212,6 +218,104 @@ TEST(WindowFactors, RobustRowIsCeresHuberLoss) {
   }
 }
 
+/// Row `row` of a block as a block of its own: the reference problem, one residual per block.
+class RowOf : public ceres::CostFunction {
+ public:
+  RowOf(const ceres::CostFunction& block, int row) : block_(block), row_(row) {
+    set_num_residuals(1);
+    *mutable_parameter_block_sizes() = block.parameter_block_sizes();
+  }
+
+  bool Evaluate(const double* const* parameters, double* residuals, double** jacobians) const override {
+    const int rows = block_.num_residuals();
+    std::vector<double> all(static_cast<std::size_t>(rows));
+    std::vector<std::vector<double>> all_jacobians;
+    std::vector<double*> pointers;
+    for (const int size : block_.parameter_block_sizes()) {
+      all_jacobians.emplace_back(static_cast<std::size_t>(rows * size));
+      pointers.push_back(all_jacobians.back().data());
+    }
+    if (!block_.Evaluate(parameters, all.data(), jacobians ? pointers.data() : nullptr)) return false;
+    residuals[0] = all[static_cast<std::size_t>(row_)];
+    if (!jacobians) return true;
+    for (std::size_t b = 0; b < all_jacobians.size(); ++b) {
+      if (!jacobians[b]) continue;
+      const int size = block_.parameter_block_sizes()[b];
+      std::copy_n(all_jacobians[b].begin() + row_ * size, size, jacobians[b]);
+    }
+    return true;
+  }
+
+ private:
+  const ceres::CostFunction& block_;
+  int row_;
+};
+
+/// The gradient and the Gauss-Newton matrix J^T J of a problem at its parameters.
+struct Model {
+  double cost = 0.0;
+  Eigen::VectorXd gradient;
+  Eigen::MatrixXd normal;
+};
+Model modelOf(ceres::Problem& problem) {
+  Model model;
+  std::vector<double> gradient;
+  ceres::CRSMatrix jacobian;
+  EXPECT_TRUE(problem.Evaluate(ceres::Problem::EvaluateOptions(), &model.cost, nullptr, &gradient, &jacobian));
+  model.gradient = Eigen::Map<Eigen::VectorXd>(gradient.data(), static_cast<Eigen::Index>(gradient.size()));
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(jacobian.num_rows, jacobian.num_cols);
+  for (int row = 0; row < jacobian.num_rows; ++row)
+    for (int k = jacobian.rows[static_cast<std::size_t>(row)]; k < jacobian.rows[static_cast<std::size_t>(row) + 1]; ++k)
+      dense(row, jacobian.cols[static_cast<std::size_t>(k)]) = jacobian.values[static_cast<std::size_t>(k)];
+  model.normal = dense.transpose() * dense;
+  return model;
+}
+
+TEST(WindowFactors, TheSolverSeesWhatOneCeresLossPerResidualGives) {
+  // The window's problem (rows reweighted by the callback, the remainder block) against the same
+  // residuals given to Ceres one block each with its HuberLoss / ScaledLoss: the same cost, gradient
+  // and Gauss-Newton matrix, the edge row 3 px out (twice its Huber threshold).
+  const factors::ObservationWeights weights;
+  factors::ObservationWeights plain_weights = weights;  // no robust weighting: the plain residuals
+  plain_weights.photometric_huber = plain_weights.edge_huber = 1e12;
+  plain_weights.edge_weight = 1.0;
+  ObservedScene window(3.0, weights), plain(3.0, plain_weights);
+
+  factors::PoseManifold manifold;
+  ceres::Problem::Options options;
+  options.cost_function_ownership = options.loss_function_ownership = options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  options.evaluation_callback = &window.observations();
+  ceres::Problem solved_as(options);  // as the window solves it
+  options.evaluation_callback = &plain.observations();
+  ceres::Problem reference(options);
+  for (ObservedScene* scene : {&window, &plain}) {
+    ceres::Problem& problem = scene == &window ? solved_as : reference;
+    for (PoseParameters& pose : scene->poses()) problem.AddParameterBlock(pose.data(), 7, &manifold);
+    problem.AddParameterBlock(scene->inverseDepth(), 1);
+  }
+  double* const window_blocks[] = {window.poses()[0].data(), window.poses()[1].data(), window.inverseDepth()};
+  double* const plain_blocks[] = {plain.poses()[0].data(), plain.poses()[1].data(), plain.inverseDepth()};
+  solved_as.AddResidualBlock(const_cast<ceres::CostFunction*>(&window.factor()), nullptr, window_blocks, 3);
+  const std::unique_ptr<ceres::CostFunction> remainder(window.observations().remainderBlock());
+  solved_as.AddResidualBlock(remainder.get(), nullptr, window.poses()[1].data());
+
+  ceres::HuberLoss photometric_loss(weights.photometric_huber / weights.photometric_sigma);
+  ceres::ScaledLoss edge_loss(new ceres::HuberLoss(weights.edge_huber / weights.edge_sigma), weights.edge_weight, ceres::TAKE_OWNERSHIP);
+  ceres::LossFunction* const losses[] = {&photometric_loss, &edge_loss, nullptr};
+  std::vector<std::unique_ptr<RowOf>> rows;
+  for (int row = 0; row < ObservedScene::kRows; ++row) {
+    rows.push_back(std::make_unique<RowOf>(plain.factor(), row));
+    reference.AddResidualBlock(rows.back().get(), losses[row], plain_blocks, 3);
+  }
+
+  const Model got = modelOf(solved_as), expected = modelOf(reference);
+  EXPECT_GT(window.remainderRow(), 0.0);  // the edge row is an outlier: the test is not trivial
+  EXPECT_NEAR(got.cost, expected.cost, 1e-9 * expected.cost);
+  ASSERT_EQ(got.gradient.size(), expected.gradient.size());
+  EXPECT_LT((got.gradient - expected.gradient).norm(), 1e-9 * (1.0 + expected.gradient.norm()));
+  EXPECT_LT((got.normal - expected.normal).norm(), 1e-9 * (1.0 + expected.normal.norm()));
+}
+
 TEST(WindowFactors, ObservationsFollowEveryEvaluationPoint) {
   // Ceres evaluates candidate points, goes back, and asks for Jacobians at a point it evaluated
   // without: each time the rows must be those of the parameters it set.
@@ -235,6 +339,7 @@ TEST(WindowFactors, ObservationsFollowEveryEvaluationPoint) {
   ObservedScene reference;
   reference.evaluate(true, true, &direct);
   EXPECT_EQ(later.host, direct.host);
+  EXPECT_EQ(later.target, direct.target);
   EXPECT_EQ(later.rho, direct.rho);
 }
 

@@ -55,6 +55,8 @@ RobustRow robustRow(double r, double k, double w);
 /// inverse depth (1); Jacobians in the poses' tangent spaces, padded as PoseManifold expects.
 /// The robust rows' remainders (RobustRow) go to one more block, remainderBlock(): the solver
 /// then sees the cost, gradient and Gauss-Newton model it saw with one loss function per residual.
+/// The blocks hold the rows of the last evaluation (after a solve, maybe of a rejected step), so
+/// anything evaluating them without the callback (Ceres' check_gradients) reads stale rows.
 class WindowObservations : public ceres::EvaluationCallback {
  public:
   /// @param poses the window's pose parameter blocks; @param images each keyframe's gradient

@@ -1,0 +1,106 @@
+// The windowed optimisation end to end, on keyframes of a synthetic drive whose points carry their
+// true depths: it must solve and pull a keyframe pose that was moved off back to the truth.
+#include <cmath>
+#include <cstdio>
+#include <deque>
+
+#include <gtest/gtest.h>
+
+#include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/odometry_frame.h"
+#include "semantic_edge_vo/se3.h"
+#include "semantic_edge_vo/synthetic/synthetic_sequence.h"
+#include "semantic_edge_vo/window_optimizer.h"
+
+namespace semantic_edge_vo {
+namespace {
+
+/// The frame's candidates with the depth the renderer gives their pixel, 5 % sigma; pixels on a
+/// depth discontinuity (either side may be right) and on moving vehicles are left out.
+std::vector<MapPoint> pointsWithTrueDepths(const std::vector<MapPoint>& candidates, const cv::Mat& depth, const cv::Mat& dynamic) {
+  std::vector<MapPoint> points;
+  for (MapPoint point : candidates) {
+    const int x = static_cast<int>(std::lround(point.u)), y = static_cast<int>(std::lround(point.v));
+    if (x < 1 || y < 1 || x + 1 >= depth.cols || y + 1 >= depth.rows || dynamic.at<std::uint8_t>(y, x)) continue;
+    double lowest = 1e9, highest = 0.0;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        lowest = std::min(lowest, static_cast<double>(depth.at<float>(y + dy, x + dx)));
+        highest = std::max(highest, static_cast<double>(depth.at<float>(y + dy, x + dx)));
+      }
+    if (!(lowest > 0.0) || highest > 1.05 * lowest) continue;
+    point.inverse_depth = 1.0 / depth.at<float>(y, x);
+    point.inverse_depth_variance = std::pow(0.05 * point.inverse_depth, 2);
+    point.observations = 1;
+    points.push_back(point);
+  }
+  return points;
+}
+
+double rotationDegrees(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle() * 180.0 / M_PI;
+}
+
+/// The scale-free errors of the motion from keyframe k - 1 to k: its rotation's and its direction of
+/// travel's, degrees.
+struct MotionError {
+  double rotation_deg = 0.0, direction_deg = 0.0;
+};
+MotionError motionError(const std::deque<std::shared_ptr<Keyframe>>& window, const std::vector<Eigen::Isometry3d>& truth, std::size_t k) {
+  const Eigen::Isometry3d estimated = window[k - 1]->T_world_cam.inverse() * window[k]->T_world_cam;
+  const Eigen::Isometry3d expected = truth[k - 1].inverse() * truth[k];
+  const double cosine = estimated.translation().normalized().dot(expected.translation().normalized());
+  return {rotationDegrees(estimated, expected), std::acos(std::min(1.0, cosine)) * 180.0 / M_PI};
+}
+
+TEST(WindowOptimizer, PullsAKeyframeMovedOffBackToTheTruth) {
+  synthetic::SyntheticSequence sequence(synthetic::SyntheticSequenceOptions::forScene(synthetic::SceneType::kCity, 1));
+  const FrameBuilder builder(FrameBuilderOptions{}, sequence.camera(), ClassTable::cityscapes().names());
+  std::deque<std::shared_ptr<Keyframe>> window;
+  std::vector<Eigen::Isometry3d> truth;
+  for (int k = 0; k < 4; ++k) {  // a keyframe every third frame, about 1.8 m apart
+    const synthetic::SyntheticFrame frame = sequence.frame(10 + 3 * k);
+    ExtractionError error;
+    auto keyframe = std::make_shared<Keyframe>();
+    keyframe->id = k;
+    keyframe->T_world_cam = frame.T_world_cam;
+    keyframe->frame = builder.build(k, frame.time, frame.gray, ClassEvidence{}, &error);
+    ASSERT_FALSE(error) << error.reason;
+    ASSERT_TRUE(keyframe->frame->has_field);
+    keyframe->points = pointsWithTrueDepths(keyframe->frame->candidates, frame.depth, frame.dynamic);
+    ASSERT_GT(keyframe->points.size(), 1000u);
+    truth.push_back(frame.T_world_cam);
+    window.push_back(keyframe);
+  }
+  // The newest keyframe off by about what tracking leaves: 1.8 cm (0.45 degrees of its travel's
+  // direction) and 0.11 degrees.
+  Vector6d off;
+  off << 0.012, -0.008, 0.01, 0.001, -0.0015, 0.0008;
+  window.back()->T_world_cam = truth.back() * se3Exp(off);
+  const MotionError before = motionError(window, truth, 3);
+
+  WindowOptimizerOptions options;  // the offline defaults (10 iterations), the depths held near the truth (they are)
+  options.keyframes = 4;
+  options.depth_prior_scale = 1.0;
+  const WindowOptimizerResult result = WindowOptimizer(options).optimize(window);
+  ASSERT_TRUE(result.solved);
+  EXPECT_LT(result.final_cost, result.initial_cost);
+  EXPECT_GT(result.edge_residuals, result.photometric_residuals / 4);  // Canny's edge points found their edges
+  const MotionError after = motionError(window, truth, 3);
+  std::printf("window: %d points, %d photometric and %d edge residuals, cost %.0f -> %.0f; the newest keyframe's motion "
+              "%.3f deg rotation and %.3f deg direction off, before %.3f and %.3f\n",
+              result.points, result.photometric_residuals, result.edge_residuals, result.initial_cost, result.final_cost,
+              after.rotation_deg, after.direction_deg, before.rotation_deg, before.direction_deg);
+  // Measured: 0.021 and 0.171 degrees. Started at the truth the window settles 0.01-0.02 and about
+  // 0.1 degrees away (the rendered images' and the sampled depths' own errors).
+  EXPECT_LT(after.rotation_deg, 0.35 * before.rotation_deg);
+  EXPECT_LT(after.direction_deg, 0.55 * before.direction_deg);
+  for (std::size_t k = 1; k + 1 < window.size(); ++k) {  // the others stay near the truth (measured: up to 0.22 degrees)
+    const MotionError error = motionError(window, truth, k);
+    EXPECT_LT(error.rotation_deg, 0.05) << "keyframe " << k;
+    EXPECT_LT(error.direction_deg, 0.35) << "keyframe " << k;
+  }
+}
+
+}  // namespace
+}  // namespace semantic_edge_vo
