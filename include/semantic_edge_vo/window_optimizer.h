@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "semantic_edge_vo/factors/observation_weights.h"
 #include "semantic_edge_vo/forward_motion_prior.h"
 #include "semantic_edge_vo/keyframe.h"
 
@@ -34,6 +35,8 @@ struct WindowOptimizerOptions {
   double measured_direction_sigma_deg = 0.5;
 
   std::string validate() const;
+  /// The sigmas, thresholds and edge weight of the point observations' rows.
+  factors::ObservationWeights observationWeights() const;
 };
 
 struct WindowOptimizerResult {

@@ -44,6 +44,16 @@ std::string WindowOptimizerOptions::validate() const {
   return error.str();
 }
 
+factors::ObservationWeights WindowOptimizerOptions::observationWeights() const {
+  factors::ObservationWeights weights;
+  weights.photometric_sigma = photometric_sigma;
+  weights.photometric_huber = photometric_huber;
+  weights.edge_sigma = edge_sigma;
+  weights.edge_huber = edge_huber;
+  weights.edge_weight = edge_weight;
+  return weights;
+}
+
 WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr<Keyframe>>& window) const {
   WindowOptimizerResult result;
   const std::size_t count = std::min(window.size(), static_cast<std::size_t>(options_.keyframes));
@@ -64,13 +74,7 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
     images.push_back(interpolators.back().get());
   }
   const PinholeCamera& camera = window[first]->frame->pyramid->level(0).camera;
-  factors::ObservationWeights weights;
-  weights.photometric_sigma = options_.photometric_sigma;
-  weights.photometric_huber = options_.photometric_huber;
-  weights.edge_sigma = options_.edge_sigma;
-  weights.edge_huber = options_.edge_huber;
-  weights.edge_weight = options_.edge_weight;
-  factors::WindowObservations observations(poses, images, camera, weights);
+  factors::WindowObservations observations(poses, images, camera, options_.observationWeights());
 
   // One loss object shared by the measured-motion residuals (the problem does not own it).
   constexpr double kMeasuredMotionHuber = 3.0;  // sigmas: a measurement far off (corners on traffic) pulls with a bounded force

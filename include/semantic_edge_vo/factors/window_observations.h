@@ -12,19 +12,13 @@
 #include <ceres/evaluation_callback.h>
 
 #include "semantic_edge_vo/camera.h"
+#include "semantic_edge_vo/factors/observation_weights.h"
 #include "semantic_edge_vo/factors/pose_parameters.h"
 
 namespace semantic_edge_vo {
 namespace factors {
 
 using Interpolator = ceres::BiCubicInterpolator<ceres::Grid2D<float, 1>>;
-
-/// Sigmas and Huber thresholds of the rows (WindowOptimizerOptions').
-struct ObservationWeights {
-  double photometric_sigma = 4.0, photometric_huber = 9.0;  ///< gray levels/px (gradient magnitude)
-  double edge_sigma = 1.0, edge_huber = 1.5;                ///< px
-  double edge_weight = 0.5;                                 ///< the edge row's cost is scaled by this
-};
 
 /// A host point seen from a target keyframe of the window.
 struct Observation {
