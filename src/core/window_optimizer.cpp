@@ -45,13 +45,7 @@ std::string WindowOptimizerOptions::validate() const {
 }
 
 factors::ObservationWeights WindowOptimizerOptions::observationWeights() const {
-  factors::ObservationWeights weights;
-  weights.photometric_sigma = photometric_sigma;
-  weights.photometric_huber = photometric_huber;
-  weights.edge_sigma = edge_sigma;
-  weights.edge_huber = edge_huber;
-  weights.edge_weight = edge_weight;
-  return weights;
+  return {photometric_sigma, photometric_huber, edge_sigma, edge_huber, edge_weight};
 }
 
 WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr<Keyframe>>& window) const {

@@ -11,6 +11,7 @@
 #include "semantic_edge_vo/factors/travel_direction_factor.h"
 #include "semantic_edge_vo/factors/window_observations.h"
 #include "semantic_edge_vo/image_pyramid.h"
+#include "semantic_edge_vo/window_optimizer.h"
 
 namespace semantic_edge_vo {
 namespace {
@@ -53,7 +54,7 @@ class ObservedScene {
   static constexpr int kRows = 3;  // photometric, edge, prior
 
   /// @param edge_offset px from the projection to the edge along its normal
-  explicit ObservedScene(double edge_offset = 1.0, const factors::ObservationWeights& weights = factors::ObservationWeights())
+  explicit ObservedScene(double edge_offset = 1.0, const factors::ObservationWeights& weights = WindowOptimizerOptions().observationWeights())
       : poses_{scene_.host, scene_.target}, rho_(scene_.rho) {
     // A blurred bright rectangle whose corner lies 2 px right of and below the projection: the point
     // sits on the flanks of both of its gradient ridges, where the gradient magnitude changes.
@@ -275,7 +276,7 @@ TEST(WindowFactors, TheSolverSeesWhatOneCeresLossPerResidualGives) {
   // The window's problem (rows reweighted by the callback, the remainder block) against the same
   // residuals given to Ceres one block each with its HuberLoss / ScaledLoss: the same cost, gradient
   // and Gauss-Newton matrix, the edge row 3 px out (twice its Huber threshold).
-  const factors::ObservationWeights weights;
+  const factors::ObservationWeights weights = WindowOptimizerOptions().observationWeights();
   factors::ObservationWeights plain_weights = weights;  // no robust weighting: the plain residuals
   plain_weights.photometric_huber = plain_weights.edge_huber = 1e12;
   plain_weights.edge_weight = 1.0;

@@ -3,11 +3,12 @@
 namespace semantic_edge_vo {
 namespace factors {
 
-/// Sigmas and Huber thresholds of the window's point observation rows (WindowObservations).
+/// Sigmas and Huber thresholds of the window's point observation rows (WindowObservations), taken
+/// from WindowOptimizerOptions::observationWeights(), where their defaults are.
 struct ObservationWeights {
-  double photometric_sigma = 4.0, photometric_huber = 9.0;  ///< gray levels/px (gradient magnitude)
-  double edge_sigma = 1.0, edge_huber = 1.5;                ///< px
-  double edge_weight = 0.5;                                 ///< the edge row's cost is scaled by this
+  double photometric_sigma, photometric_huber;  ///< gray levels/px (gradient magnitude)
+  double edge_sigma, edge_huber;                ///< px
+  double edge_weight;                           ///< the edge row's cost is scaled by this
 };
 
 }  // namespace factors
