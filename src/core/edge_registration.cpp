@@ -6,6 +6,25 @@
 
 namespace semantic_edge_vo {
 
+const char* toString(ClassAssociation association) {
+  switch (association) {
+    case ClassAssociation::kNearest: return "nearest";
+    case ClassAssociation::kEach: return "each";
+    case ClassAssociation::kSplit: return "split";
+  }
+  return "unknown";
+}
+
+bool parseClassAssociation(const std::string& text, ClassAssociation* association) {
+  for (ClassAssociation a : {ClassAssociation::kNearest, ClassAssociation::kEach, ClassAssociation::kSplit}) {
+    if (text == toString(a)) {
+      *association = a;
+      return true;
+    }
+  }
+  return false;
+}
+
 std::string EdgeRegistrationOptions::validate() const {
   std::ostringstream error;
   if (level < 0) error << "level must be >= 0 (got " << level << ")";
@@ -43,14 +62,10 @@ void EdgeRegistration::layersOf(const ReferenceEdge& edge, const Eigen::Isometry
   }
 }
 
-bool EdgeRegistration::residualFor(const ReferenceEdge& edge, const Eigen::Vector3d& p_target,
-                                   const NearestNeighborFieldView& field, int layer,
-                                   std::vector<EdgeResidual>* out) const {
+double EdgeRegistration::addResidual(double weight, const Eigen::Vector3d& p_target, const FieldMatch& match,
+                                     std::vector<EdgeResidual>* out) const {
   const double z = p_target.z();
   const Eigen::Vector2d projected = camera_.project(p_target);
-  FieldMatch match;
-  if (!field.nearest(options_.level, layer, static_cast<float>(projected.x()), static_cast<float>(projected.y()), &match))
-    return false;
   const Eigen::Vector2d normal(match.normal_x, match.normal_y);
   EdgeResidual residual;
   residual.value = normal.dot(projected - Eigen::Vector2d(match.u, match.v));
@@ -60,9 +75,9 @@ bool EdgeRegistration::residualFor(const ReferenceEdge& edge, const Eigen::Vecto
   Eigen::Matrix<double, 3, 6> d_point_d_twist;  // left perturbation: exp(xi) * p = p + v + w x p
   d_point_d_twist << Eigen::Matrix3d::Identity(), -skew(p_target);
   residual.jacobian = normal.transpose() * d_pixel_d_point * d_point_d_twist;
-  residual.weight = edge.weight * huberWeight(residual.value, options_.huber_threshold);
+  residual.weight = weight * huberWeight(residual.value, options_.huber_threshold);
   out->push_back(residual);
-  return true;
+  return weight * huberCost(residual.value, options_.huber_threshold);
 }
 
 double EdgeRegistration::evaluate(const std::vector<ReferenceEdge>& edges, std::size_t begin, std::size_t end,
@@ -70,18 +85,38 @@ double EdgeRegistration::evaluate(const std::vector<ReferenceEdge>& edges, std::
                                   std::vector<EdgeResidual>* out) const {
   out->clear();
   const double unmatched_cost = huberCost(field.truncation_radius, options_.huber_threshold);
+  const bool semantic = field.kind == FieldKind::kSnnf;
+  const bool nearest_class = semantic && options_.class_association == ClassAssociation::kNearest;
+  const bool split = semantic && options_.class_association == ClassAssociation::kSplit;
   double cost = 0.0;
   std::vector<int> layers;
   for (std::size_t i = begin; i < end; ++i) {
     const ReferenceEdge& edge = edges[i];
     layersOf(edge, T_target_ref, field, &layers);
+    if (layers.empty()) continue;
     const Eigen::Vector3d p_target = T_target_ref * edge.point;
-    for (int layer : layers) {
-      if (p_target.z() > 1e-3 && residualFor(edge, p_target, field, layer, out))
-        cost += edge.weight * huberCost(out->back().value, options_.huber_threshold);
-      else
-        cost += edge.weight * unmatched_cost;
+    // One association per layer, or one for the nearest of the pixel's classes.
+    const std::size_t associations = nearest_class ? 1 : layers.size();
+    const double weight = split ? edge.weight / static_cast<double>(layers.size()) : edge.weight;
+    if (!(p_target.z() > 1e-3)) {
+      cost += static_cast<double>(associations) * weight * unmatched_cost;
+      continue;
     }
+    const Eigen::Vector2d projected = camera_.project(p_target);
+    const float x = static_cast<float>(projected.x()), y = static_cast<float>(projected.y());
+    FieldMatch best;
+    bool found = false;
+    for (int layer : layers) {
+      FieldMatch match;
+      const bool matched = field.nearest(options_.level, layer, x, y, &match);
+      if (!nearest_class) {
+        cost += matched ? addResidual(weight, p_target, match, out) : weight * unmatched_cost;
+      } else if (matched && (!found || match.distance < best.distance)) {
+        best = match;
+        found = true;
+      }
+    }
+    if (nearest_class) cost += found ? addResidual(weight, p_target, best, out) : weight * unmatched_cost;
   }
   return cost;
 }
