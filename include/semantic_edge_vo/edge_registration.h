@@ -82,8 +82,10 @@ class EdgeRegistration {
                                       const Eigen::Isometry3d& T_target_ref) const;
 
  private:
-  /// Appends the residual of an edge seen at `p_target` against `match`, at `weight`; returns its robust cost.
-  double addResidual(double weight, const Eigen::Vector3d& p_target, const FieldMatch& match, std::vector<EdgeResidual>* out) const;
+  /// Appends the residual of an edge seen at `p_target` (its pixel `projected`) against `match`, at
+  /// `weight`; returns its robust cost.
+  double addResidual(double weight, const Eigen::Vector3d& p_target, const Eigen::Vector2d& projected, const FieldMatch& match,
+                     std::vector<EdgeResidual>* out) const;
   /// Layers of the field the edge is registered to, at the pose.
   void layersOf(const ReferenceEdge& edge, const Eigen::Isometry3d& T_target_ref, const NearestNeighborFieldView& field,
                 std::vector<int>* layers) const;

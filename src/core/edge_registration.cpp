@@ -62,10 +62,9 @@ void EdgeRegistration::layersOf(const ReferenceEdge& edge, const Eigen::Isometry
   }
 }
 
-double EdgeRegistration::addResidual(double weight, const Eigen::Vector3d& p_target, const FieldMatch& match,
-                                     std::vector<EdgeResidual>* out) const {
+double EdgeRegistration::addResidual(double weight, const Eigen::Vector3d& p_target, const Eigen::Vector2d& projected,
+                                     const FieldMatch& match, std::vector<EdgeResidual>* out) const {
   const double z = p_target.z();
-  const Eigen::Vector2d projected = camera_.project(p_target);
   const Eigen::Vector2d normal(match.normal_x, match.normal_y);
   EdgeResidual residual;
   residual.value = normal.dot(projected - Eigen::Vector2d(match.u, match.v));
@@ -110,13 +109,13 @@ double EdgeRegistration::evaluate(const std::vector<ReferenceEdge>& edges, std::
       FieldMatch match;
       const bool matched = field.nearest(options_.level, layer, x, y, &match);
       if (!nearest_class) {
-        cost += matched ? addResidual(weight, p_target, match, out) : weight * unmatched_cost;
+        cost += matched ? addResidual(weight, p_target, projected, match, out) : weight * unmatched_cost;
       } else if (matched && (!found || match.distance < best.distance)) {
         best = match;
         found = true;
       }
     }
-    if (nearest_class) cost += found ? addResidual(weight, p_target, best, out) : weight * unmatched_cost;
+    if (nearest_class) cost += found ? addResidual(weight, p_target, projected, best, out) : weight * unmatched_cost;
   }
   return cost;
 }
