@@ -2,9 +2,10 @@
 // (and optionally a rosbag). Formats: docs/synthetic_sequences.md.
 //   make_synthetic_sequence --scene city|village|highway --frames N --seed S --output DIR [--bag FILE]
 //       [--label-confusion X] [--edge-blur X] [--missed-edges X] [--spurious-edges X]   (0..1)
-//       [--no-semantics] [--no-traffic] [--quiet]
+//       [--stop-at M] [--stop-for S] [--vibration DEG] [--no-semantics] [--no-traffic] [--quiet]
 // Rendering and file writing run on two threads; a progress bar goes to stderr.
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <deque>
 #include <iostream>
@@ -32,6 +33,7 @@ const char* const kUsage =
     "usage: make_synthetic_sequence --scene city|village|highway --frames N --seed S --output DIR [--bag FILE]\n"
     "         [--label-confusion X] [--edge-blur X] [--missed-edges X] [--spurious-edges X]  (strengths 0..1)\n"
     "         [--stop-at M] [--stop-for S]  (a stop M metres along the route, standing S s, default 5)\n"
+    "         [--vibration DEG]  (pitch and roll jitter amplitude; default the scene's: 0.086, highway 0.057)\n"
     "         [--no-semantics] [--no-traffic] [--quiet]\n";
 
 struct Arguments {
@@ -41,15 +43,17 @@ struct Arguments {
   std::string output, bag;
   NetworkNoiseOptions noise;
   double stop_at = -1.0, stop_duration = 5.0;  ///< m, s (EgoMotionOptions)
+  double vibration_deg = -1.0;                 ///< < 0: the scene's
   bool semantics = true, traffic = true, quiet = false;
 };
 
 bool parse(int argc, char** argv, Arguments* args, std::string* error) {
-  std::string scene, frames, seed, stop_at, stop_duration;
+  std::string scene, frames, seed, stop_at, stop_duration, vibration;
   std::map<std::string, std::string> noise;
   for (const std::string& flag : noiseFlags()) noise[flag] = "";
   std::map<std::string, std::string*> values = {{"--scene", &scene}, {"--frames", &frames}, {"--seed", &seed}, {"--output", &args->output},
-                                                {"--bag", &args->bag}, {"--stop-at", &stop_at}, {"--stop-for", &stop_duration}};
+                                                {"--bag", &args->bag}, {"--stop-at", &stop_at}, {"--stop-for", &stop_duration},
+                                                {"--vibration", &vibration}};
   for (auto& [flag, text] : noise) values[flag] = &text;
   bool no_semantics = false, no_traffic = false;
   *error = parseFlags(argc, argv, values, {{"--no-semantics", &no_semantics}, {"--no-traffic", &no_traffic}, {"--quiet", &args->quiet}});
@@ -60,7 +64,10 @@ bool parse(int argc, char** argv, Arguments* args, std::string* error) {
   if (error->empty()) *error = parseNumber("--seed", seed, &args->seed);
   if (error->empty()) *error = parseNumber("--stop-at", stop_at, &args->stop_at);
   if (error->empty()) *error = parseNumber("--stop-for", stop_duration, &args->stop_duration);
+  if (error->empty()) *error = parseNumber("--vibration", vibration, &args->vibration_deg);
   if (error->empty() && !stop_at.empty() && args->stop_at < 0.0) *error = "--stop-at takes a distance >= 0, m";
+  if (error->empty() && !vibration.empty() && !(args->vibration_deg >= 0.0 && args->vibration_deg <= 10.0))
+    *error = "--vibration takes an amplitude in [0, 10] deg";
   for (const auto& [flag, text] : noise)
     if (error->empty() && !text.empty()) parseNoiseFlag(flag, text, &args->noise, error);
   if (!error->empty()) return false;
@@ -118,6 +125,7 @@ int main(int argc, char** argv) {
   options.world.traffic = args.traffic;
   options.world.ego.stop_at = args.stop_at;
   options.world.ego.stop_duration = args.stop_duration;
+  if (args.vibration_deg >= 0.0) options.world.ego.vibration = args.vibration_deg * M_PI / 180.0;
   if (const std::string invalid = options.validate(); !invalid.empty()) {
     std::cerr << "make_synthetic_sequence: " << invalid << "\n";
     return 2;

@@ -138,6 +138,22 @@ TEST(SyntheticGeometry, PosesStartAtIdentityAndMoveLikeACar) {
   }
 }
 
+TEST(SyntheticGeometry, VibrationShakesTheCameraNotItsPath) {
+  SyntheticSequenceOptions rough = smallOptions(SceneType::kCity, 4);
+  rough.world.ego.vibration = 2.0 * M_PI / 180.0;  // make_synthetic_sequence --vibration 2
+  SyntheticSequence smooth_sequence(smallOptions(SceneType::kCity, 4)), rough_sequence(rough);
+  double largest = 0.0;  // rotation between the two frame-to-frame motions, deg
+  for (int i = 1; i <= 200; ++i) {
+    const Eigen::Isometry3d smooth_step = smooth_sequence.pose(i - 1).inverse() * smooth_sequence.pose(i);
+    const Eigen::Isometry3d rough_step = rough_sequence.pose(i - 1).inverse() * rough_sequence.pose(i);
+    EXPECT_NEAR(smooth_step.translation().norm(), rough_step.translation().norm(), 1e-9) << "frame " << i;
+    largest = std::max(largest, Eigen::AngleAxisd(smooth_step.linear().transpose() * rough_step.linear()).angle() * 180.0 / M_PI);
+  }
+  // The default jitter is 0.086 deg; a 2 deg one turns a frame by up to twice that more than the smooth drive.
+  EXPECT_GT(largest, 2.0);
+  EXPECT_LT(largest, 6.0);
+}
+
 }  // namespace
 }  // namespace synthetic
 }  // namespace semantic_edge_vo

@@ -1,5 +1,6 @@
 #include "semantic_edge_vo/synthetic/sequence_directory_writer.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -30,7 +31,8 @@ void writeMetadata(std::ostream& out, const SyntheticSequenceOptions& options, i
       << "frame_rate: " << options.world.ego.frame_rate << "  # Hz\n"
       << "camera: {width: " << options.camera.width << ", height: " << options.camera.height << ", fx: " << options.camera.fx
       << ", fy: " << options.camera.fy << ", cx: " << options.camera.cx << ", cy: " << options.camera.cy << "}\n"
-      << "camera_height: " << options.world.ego.camera_height << "  # m above the road\n";
+      << "camera_height: " << options.world.ego.camera_height << "  # m above the road\n"
+      << "vibration: " << options.world.ego.vibration * 180.0 / M_PI << "  # pitch and roll jitter amplitude, deg\n";
   if (options.world.ego.stop_at >= 0.0)
     out << "stop: {at: " << options.world.ego.stop_at << ", duration: " << options.world.ego.stop_duration
         << "}  # the car brakes to a stop this far along its route, m, and stands this long, s\n";
