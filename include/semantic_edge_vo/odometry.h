@@ -173,7 +173,7 @@ class Odometry {
   static constexpr std::size_t kFrameIntervals = 10;
   FrameStamp last_trusted_stamp_;
   static constexpr int kMaxDeadReckoning = 50;  ///< frames predicted on from the last trusted pose: 5 s at 10 Hz
-  double speed_at_restart_ = 0.0;  ///< travel per frame interval when the map was given up (lost, restart): the next one's scale
+  double speed_at_restart_ = 0.0;  ///< driving travel per frame interval (drivingMotion) when the map was given up: the next one's scale
   /// Frame-to-frame travel (rotation left out) of the last trusted frames that moved: the guess
   /// after a stop (drivingMotion).
   std::deque<Vector6d> driving_motions_;

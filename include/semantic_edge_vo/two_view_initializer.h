@@ -7,6 +7,7 @@
 
 #include "semantic_edge_vo/camera.h"
 #include "semantic_edge_vo/corner_tracks.h"
+#include "semantic_edge_vo/two_view_geometry.h"
 
 namespace semantic_edge_vo {
 
@@ -18,6 +19,8 @@ struct InitializerOptions {
   double ransac_threshold = 0.75;   ///< essential-matrix RANSAC, px
   double min_triangulation_angle = 0.1;  ///< deg; points seen under less parallax get no depth
   double median_depth = 10.0;       ///< the map's scale: median depth of the first keyframe's points, map units
+  double max_travel_off_axis = 60.0;  ///< deg; re-initialising after a loss, the travel must keep this close to the
+                                      ///< vehicle's forward axis (farther: the consensus is traffic's, the rest is tried)
 
   std::string validate() const;
 };
@@ -33,7 +36,10 @@ class TwoViewInitializer {
   TwoViewInitializer(const InitializerOptions& options, const PinholeCamera& camera) : options_(options), camera_(camera) {}
 
   /// Starts from a first frame and the pixels (full resolution) whose depths are wanted.
-  void reset(const cv::Mat& gray, const std::vector<Eigen::Vector2f>& pixels);
+  /// @param expected_travel the direction the camera must travel in (its optical frame), zero when
+  ///        any will do: a motion travelling more than max_travel_off_axis away from it is refused
+  void reset(const cv::Mat& gray, const std::vector<Eigen::Vector2f>& pixels,
+             const Eigen::Vector3d& expected_travel = Eigen::Vector3d::Zero());
   /// Adds the next frame (CV_8UC1).
   Status add(const cv::Mat& gray);
 
@@ -46,11 +52,16 @@ class TwoViewInitializer {
 
  private:
   bool solve();
+  /// The two-view motion of the tracks that travels as expected: the largest consensus, or when it
+  /// travels elsewhere (a truck alongside, overtaking, fills the view) the largest among the rest.
+  bool estimateMotion(TwoViewMotion* motion) const;
+  bool travelsAsExpected(const TwoViewMotion& motion) const;
 
   InitializerOptions options_;
   PinholeCamera camera_;
   CornerTracks tracks_;  ///< the reset() pixels, followed
   std::size_t pixel_count_ = 0;
+  Eigen::Vector3d expected_travel_ = Eigen::Vector3d::Zero();
   Eigen::Isometry3d T_last_first_ = Eigen::Isometry3d::Identity();
   std::vector<double> inverse_depths_;
 };

@@ -124,7 +124,10 @@ void Odometry::restart() {
   if (state_ != OdometryState::kTracking) return;
   state_ = OdometryState::kInitializing;
   recovering_ = true;
-  speed_at_restart_ = frameMotion().translation().norm();
+  // The speed it drove at, not the last frame's: traffic that made the loss dragged the last frames
+  // towards standing (a truck alongside at our speed), and the new map would take that scale.
+  const double driving_speed = drivingMotion().head<3>().norm();
+  speed_at_restart_ = driving_speed > 0.0 ? driving_speed : frameMotion().translation().norm();
 }
 
 std::vector<FramePose> Odometry::flush() {
@@ -147,7 +150,11 @@ void Odometry::startInitialization(const std::shared_ptr<const OdometryFrame>& f
   waiting_ = {{frame, 0.0}};
   std::vector<Eigen::Vector2f> pixels;
   for (const MapPoint& point : frame->candidates) pixels.emplace_back(point.u, point.v);
-  initializer_.reset(gray8(*frame), pixels);
+  // A loss on a car is mostly traffic filling the view, and the largest consensus of the next frames
+  // may be its motion: the new map must travel forward (not the estimate before the loss: traffic
+  // may have dragged it off already).
+  const ForwardMotionOptions& forward = options_.tracker.forward_motion;
+  initializer_.reset(gray8(*frame), pixels, recovering_ && forward.sigma_deg > 0.0 ? forward.axis() : Eigen::Vector3d::Zero());
   waiting_.front().ms = elapsedMs(start);
 }
 

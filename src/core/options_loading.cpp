@@ -52,6 +52,7 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("initializer/min_parallax", &options->initializer.min_parallax, "image widths");
   loader->load("initializer/max_frames", &options->initializer.max_frames, "frames");
   loader->load("initializer/median_depth", &options->initializer.median_depth, "map units");
+  loader->load("initializer/max_travel_off_axis", &options->initializer.max_travel_off_axis, "deg");
   loader->load("keyframe_flow", &options->keyframe_flow, "px");
   loader->load("keyframe_max_interval", &options->keyframe_max_interval, "frames");
   loader->load("keyframe_min_parallax", &options->keyframe_min_parallax, "px");

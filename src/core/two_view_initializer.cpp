@@ -5,8 +5,6 @@
 #include <cmath>
 #include <sstream>
 
-#include "semantic_edge_vo/two_view_geometry.h"
-
 namespace semantic_edge_vo {
 
 std::string InitializerOptions::validate() const {
@@ -15,10 +13,13 @@ std::string InitializerOptions::validate() const {
   else if (max_frames < 1 || min_points < 8) error << "need max_frames >= 1 and min_points >= 8";
   else if (!(ransac_threshold > 0 && min_triangulation_angle >= 0 && median_depth > 0))
     error << "ransac_threshold and median_depth must be > 0, min_triangulation_angle >= 0";
+  else if (!(max_travel_off_axis > 0 && max_travel_off_axis <= 180)) error << "max_travel_off_axis must be in (0, 180] deg";
   return error.str();
 }
 
-void TwoViewInitializer::reset(const cv::Mat& gray, const std::vector<Eigen::Vector2f>& pixels) {
+void TwoViewInitializer::reset(const cv::Mat& gray, const std::vector<Eigen::Vector2f>& pixels,
+                               const Eigen::Vector3d& expected_travel) {
+  expected_travel_ = expected_travel;
   std::vector<cv::Point2f> points;
   for (const Eigen::Vector2f& pixel : pixels) points.emplace_back(pixel.x(), pixel.y());
   tracks_.reset(gray, points);
@@ -45,7 +46,7 @@ bool TwoViewInitializer::solve() {
   const std::vector<cv::Point2f>& first = tracks_.first();
   const std::vector<cv::Point2f>& current = tracks_.current();
   TwoViewMotion motion;
-  if (!estimateTwoViewMotion(first, current, camera_, options_.ransac_threshold, options_.min_points, &motion)) return false;
+  if (!estimateMotion(&motion)) return false;
   const Eigen::Matrix3d& R = motion.R_second_first;
   const Eigen::Vector3d& t = motion.t_second_first;
 
@@ -74,6 +75,39 @@ bool TwoViewInitializer::solve() {
   T_last_first_ = Eigen::Isometry3d::Identity();
   T_last_first_.linear() = R;
   T_last_first_.translation() = t * scale;
+  return true;
+}
+
+bool TwoViewInitializer::travelsAsExpected(const TwoViewMotion& motion) const {
+  if (expected_travel_.isZero()) return true;
+  // The last camera's centre in the first one's frame.
+  const Eigen::Vector3d travel = -motion.R_second_first.transpose() * motion.t_second_first;
+  const double cosine = travel.normalized().dot(expected_travel_.normalized());
+  return cosine >= std::cos(options_.max_travel_off_axis * M_PI / 180.0);
+}
+
+bool TwoViewInitializer::estimateMotion(TwoViewMotion* motion) const {
+  const std::vector<cv::Point2f>& first = tracks_.first();
+  const std::vector<cv::Point2f>& current = tracks_.current();
+  if (!estimateTwoViewMotion(first, current, camera_, options_.ransac_threshold, options_.min_points, motion)) return false;
+  if (travelsAsExpected(*motion)) return true;
+  std::vector<cv::Point2f> first_rest, current_rest;
+  std::vector<std::size_t> rest;
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    if (motion->inliers[i]) continue;
+    first_rest.push_back(first[i]);
+    current_rest.push_back(current[i]);
+    rest.push_back(i);
+  }
+  TwoViewMotion other;
+  if (!estimateTwoViewMotion(first_rest, current_rest, camera_, options_.ransac_threshold, options_.min_points, &other) ||
+      !travelsAsExpected(other))
+    return false;
+  motion->R_second_first = other.R_second_first;
+  motion->t_second_first = other.t_second_first;
+  motion->inlier_count = other.inlier_count;
+  motion->inliers.assign(first.size(), 0);
+  for (std::size_t j = 0; j < rest.size(); ++j) motion->inliers[rest[j]] = other.inliers[j];
   return true;
 }
 
