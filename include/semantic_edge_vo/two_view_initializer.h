@@ -7,9 +7,10 @@
 
 #include "semantic_edge_vo/camera.h"
 #include "semantic_edge_vo/corner_tracks.h"
-#include "semantic_edge_vo/two_view_geometry.h"
 
 namespace semantic_edge_vo {
+
+struct TwoViewMotion;
 
 struct InitializerOptions {
   double min_parallax = 0.032;      ///< median displacement of the tracked points needed, fraction of the image width

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "semantic_edge_vo/two_view_geometry.h"
+
 namespace semantic_edge_vo {
 
 std::string InitializerOptions::validate() const {

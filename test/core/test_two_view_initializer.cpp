@@ -11,9 +11,9 @@ namespace semantic_edge_vo {
 namespace {
 
 // A forward drive past a truck that overtakes close by on the right: ground (y = 1.6 m below the
-// camera) and a wall 60 m ahead stand still; the truck's side (the plane x = 2.5 m, 3.5 m tall, 40 m long, its rear beside the camera
-// at first) drives 0.8 m a frame while the camera drives 0.5, so against the truck the camera
-// backs up. Each surface is painted with the same blurred noise, looked up by its own coordinates.
+// camera) and a wall 60 m ahead stand still; the truck's side (the plane x = 2.5 m, 3.5 m tall,
+// 40 m long, its rear beside the camera at first) drives 0.8 m a frame while the camera drives 0.5,
+// so against the truck the camera backs up. Each surface is painted with the same blurred noise, looked up by its own coordinates.
 constexpr double kCameraStep = 0.5, kTruckStep = 0.8;
 
 cv::Mat noiseTexture() {
