@@ -79,6 +79,9 @@ class Odometry {
   /// Poses of frames still waiting for initialisation, as untrusted constant-velocity predictions (end of a sequence).
   std::vector<FramePose> flush();
 
+  /// The class table the frames' class masks refer to (resolves the tracker's movable classes).
+  void setClassNames(const std::vector<std::string>& class_names) { tracker_.setClassNames(class_names); }
+
   OdometryState state() const { return state_; }
   const std::deque<std::shared_ptr<Keyframe>>& keyframes() const { return keyframes_; }
 

@@ -51,6 +51,8 @@ class FrameBuilder {
   /// @param[out] error named reason when the inputs are unusable
   std::shared_ptr<const OdometryFrame> build(int index, double time, const cv::Mat& gray, const ClassEvidence& classes,
                                              ExtractionError* error) const;
+  /// The classes the frames' class masks refer to: the class table, or {"edge"} in canny mode.
+  std::vector<std::string> classNames() const;
 
  private:
   FrameBuilderOptions options_;

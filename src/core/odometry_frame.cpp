@@ -51,14 +51,17 @@ std::shared_ptr<const OdometryFrame> FrameBuilder::build(int index, double time,
   frame->pyramid = std::make_shared<ImagePyramid>(gray, camera_, options_.pyramid_levels);
   frame->candidates = candidatesFrom(edges.view(), sample.edge_indices, sample.support_u, sample.support_v);
   if (options_.use_field) {
-    const std::vector<std::string> names = options_.intake.mode == IntakeMode::kCanny ? std::vector<std::string>{"edge"} : class_names_;
     auto field = std::make_shared<NearestNeighborFieldData>(
-        buildNearestNeighborField(edges.view(), gray.cols, gray.rows, names, options_.field));
+        buildNearestNeighborField(edges.view(), gray.cols, gray.rows, classNames(), options_.field));
     frame->field = field->view();
     frame->field_storage = field;
     frame->has_field = true;
   }
   return frame;
+}
+
+std::vector<std::string> FrameBuilder::classNames() const {
+  return options_.intake.mode == IntakeMode::kCanny ? std::vector<std::string>{"edge"} : class_names_;
 }
 
 }  // namespace semantic_edge_vo

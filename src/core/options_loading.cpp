@@ -45,6 +45,8 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
     return "tracker/class_association must be nearest, each or split (got '" + association + "')";
   loader->load("tracker/accept_inlier_ratio", &tracker.accept_inlier_ratio, "");
   loader->load("tracker/min_inlier_ratio", &tracker.min_inlier_ratio, "");
+  loader->load("tracker/movable_classes", &tracker.movable_classes, "(class names, comma-separated; empty: no check)");
+  loader->load("tracker/movable_disagreement", &tracker.movable_disagreement, "(inlier ratio difference)");
   loader->load("tracker/forward_motion/sigma", &tracker.forward_motion.sigma_deg, "deg (0: off)");
   loader->load("tracker/forward_motion/pitch", &tracker.forward_motion.pitch_deg, "deg (+: down)");
   loader->load("tracker/forward_motion/yaw", &tracker.forward_motion.yaw_deg, "deg (+: right)");

@@ -9,12 +9,18 @@
 
 #include "semantic_edge_vo/nearest_neighbor_field.h"
 #include "semantic_edge_vo/parallel_slices.h"
+#include "semantic_edge_vo/point_sampler.h"
 
 namespace semantic_edge_vo {
 namespace {
 
 /// Coarse levels use every n-th point: they only need to find the basin.
 int pointStride(int level) { return level >= 2 ? 1 << (level - 1) : 1; }
+
+/// Movable points that truly move agree worse with the pose tracked without them (their level-0
+/// inlier ratio drops: 0.004-0.66 over a truck's drag on the synthetic highway); parked ones agree
+/// as well as before (village: 0.000, once 0.06 of 14). Below this drop the pose with them stays.
+constexpr double kMovingDisagreement = 0.02;
 
 }  // namespace
 
@@ -30,21 +36,50 @@ std::string TrackerOptions::validate() const {
     error << "min_inlier_ratio and min_points_in_view must be in [0, 1]";
   else if (!(forward_motion.sigma_deg >= 0 && std::abs(forward_motion.pitch_deg) < 90 && std::abs(forward_motion.yaw_deg) < 90))
     error << "forward_motion: sigma must be >= 0 deg (0: off), pitch and yaw within +-90 deg";
+  else if (!(movable_disagreement >= 0 && movable_disagreement <= 1))
+    error << "movable_disagreement must be in [0, 1] (got " << movable_disagreement << ")";
   return error.str();
+}
+
+void Tracker::setClassNames(const std::vector<std::string>& class_names) {
+  movable_mask_ = classMaskOf(class_names, options_.movable_classes);
+  const std::size_t classes = std::min<std::size_t>(class_names.size(), 32);
+  unknown_class_mask_ = classes == 32 ? ~0u : (1u << classes) - 1u;
+  if (keyframe_) setKeyframe(keyframe_);
 }
 
 void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
   keyframe_ = std::move(keyframe);
+  all_ = trackedPoints(true);
+  const bool has_movable = movable_mask_ != 0 && std::any_of(keyframe_->points.begin(), keyframe_->points.end(), [&](const MapPoint& p) {
+                             return p.hasDepth() && isMovable(p.class_mask);
+                           });
+  unmoving_ = has_movable ? trackedPoints(false) : TrackedPoints();
+  const int levels = static_cast<int>(all_.references.size());
+  const PinholeCamera& camera = keyframe_->frame->pyramid->level(0).camera;
+  edge_residuals_.clear();
+  for (int l = 0; l < levels; ++l) {
+    EdgeRegistrationOptions edge_options;
+    edge_options.level = l;
+    edge_options.huber_threshold = options_.edge_huber;
+    edge_options.class_association = options_.class_association;
+    edge_residuals_.emplace_back(camera, edge_options);
+  }
+}
+
+Tracker::TrackedPoints Tracker::trackedPoints(bool with_movable) const {
   const ImagePyramid& pyramid = *keyframe_->frame->pyramid;
   const int levels = std::min(options_.levels, pyramid.levels());
-  references_.assign(static_cast<std::size_t>(levels), LevelReference());
+  const auto tracked = [&](const MapPoint& point) { return point.hasDepth() && (with_movable || !isMovable(point.class_mask)); };
+  TrackedPoints points;
+  points.references.assign(static_cast<std::size_t>(levels), LevelReference());
   for (int l = 0; l < levels; ++l) {
     const PyramidLevel& level = pyramid.level(l);
     const float scale = static_cast<float>(std::ldexp(1.0, -l));
-    LevelReference& reference = references_[static_cast<std::size_t>(l)];
+    LevelReference& reference = points.references[static_cast<std::size_t>(l)];
     for (std::size_t i = 0; i < keyframe_->points.size(); i += static_cast<std::size_t>(pointStride(l))) {
       const MapPoint& point = keyframe_->points[i];
-      if (!point.hasDepth()) continue;
+      if (!tracked(point)) continue;
       const float u = toLevel(point.u, scale), v = toLevel(point.v, scale);
       if (!level.camera.contains(u, v, 3.0)) continue;
       const double z = 1.0 / point.inverse_depth;
@@ -56,35 +91,28 @@ void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
       reference.point_index.push_back(static_cast<int>(i));
     }
   }
-  edges_.clear();
   const PinholeCamera& camera = pyramid.level(0).camera;
   const double edge_weight = options_.edge_weight / (options_.edge_sigma * options_.edge_sigma);
   for (const MapPoint& point : keyframe_->points)
-    if (point.isEdge() && point.hasDepth())
-      edges_.push_back({camera.backProject(point.u, point.v, 1.0 / point.inverse_depth), point.normal.cast<double>(),
-                        point.class_mask, edge_weight});
-  edge_residuals_.clear();
-  for (int l = 0; l < levels; ++l) {
-    EdgeRegistrationOptions edge_options;
-    edge_options.level = l;
-    edge_options.huber_threshold = options_.edge_huber;
-    edge_options.class_association = options_.class_association;
-    edge_residuals_.emplace_back(camera, edge_options);
-  }
+    if (point.isEdge() && tracked(point))
+      points.edges.push_back({camera.backProject(point.u, point.v, 1.0 / point.inverse_depth), point.normal.cast<double>(),
+                              point.class_mask, edge_weight});
+  return points;
 }
 
-double Tracker::evaluate(int level, const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame,
+double Tracker::evaluate(const TrackedPoints& points, int level, const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame,
                          const NearestNeighborFieldView* field, const ForwardMotionPrior& prior, Normal* normal,
                          TrackingResult* result) const {
-  const bool with_edges = field && !edges_.empty() && options_.edge_weight > 0.0;
+  const bool with_edges = field && !points.edges.empty() && options_.edge_weight > 0.0;
+  const LevelReference& reference = points.references[static_cast<std::size_t>(level)];
   std::array<LevelSums, kParallelSlices> slices;
   forEachSlice([&](int slice) {
     LevelSums& sums = slices[static_cast<std::size_t>(slice)];
-    const auto [begin, end] = sliceRange(references_[static_cast<std::size_t>(level)].point_index.size(), slice);
-    addPhotometric(level, T_cam_kf, frame.level(level), begin, end, normal != nullptr, &sums);
+    const auto [begin, end] = sliceRange(reference.point_index.size(), slice);
+    addPhotometric(reference, T_cam_kf, frame.level(level), begin, end, normal != nullptr, &sums);
     if (with_edges) {
-      const auto [edge_begin, edge_end] = sliceRange(edges_.size(), slice);
-      addEdges(level, T_cam_kf, *field, edge_begin, edge_end, normal != nullptr, &sums);
+      const auto [edge_begin, edge_end] = sliceRange(points.edges.size(), slice);
+      addEdges(points.edges, level, T_cam_kf, *field, edge_begin, edge_end, normal != nullptr, &sums);
     }
   });
   LevelSums total;
@@ -104,9 +132,8 @@ double Tracker::evaluate(int level, const Eigen::Isometry3d& T_cam_kf, const Ima
   return total.cost + prior.evaluate(T_cam_kf, normal ? &normal->H : nullptr, normal ? &normal->b : nullptr);
 }
 
-void Tracker::addPhotometric(int level, const Eigen::Isometry3d& T_cam_kf, const PyramidLevel& target, std::size_t begin,
-                             std::size_t end, bool with_normal, LevelSums* sums) const {
-  const LevelReference& reference = references_[static_cast<std::size_t>(level)];
+void Tracker::addPhotometric(const LevelReference& reference, const Eigen::Isometry3d& T_cam_kf, const PyramidLevel& target,
+                             std::size_t begin, std::size_t end, bool with_normal, LevelSums* sums, int* block_inliers) const {
   const Eigen::Matrix3f R = T_cam_kf.linear().cast<float>();
   const Eigen::Vector3f t = T_cam_kf.translation().cast<float>();
   const float fx = static_cast<float>(target.camera.fx), fy = static_cast<float>(target.camera.fy);
@@ -126,9 +153,11 @@ void Tracker::addPhotometric(int level, const Eigen::Isometry3d& T_cam_kf, const
     }
     if (!visible) {
       sums->cost += out_of_view_cost;
+      if (block_inliers) block_inliers[block] = -1;
       continue;
     }
     ++sums->in_view;
+    const int inliers_before = sums->inliers;
     for (int j = 0; j < kPattern; ++j) {
       const float x = pixel[j].x(), y = pixel[j].y();
       const double r = sampleBilinear(target.gradient, x, y) - reference.pattern_values[block * kPattern + j];
@@ -149,13 +178,15 @@ void Tracker::addPhotometric(int level, const Eigen::Isometry3d& T_cam_kf, const
       sums->normal.H.noalias() += w * J * J.transpose();
       sums->normal.b.noalias() += w * r * J;
     }
+    if (block_inliers) block_inliers[block] = sums->inliers - inliers_before;
   }
 }
 
-void Tracker::addEdges(int level, const Eigen::Isometry3d& T_cam_kf, const NearestNeighborFieldView& field, std::size_t begin,
-                       std::size_t end, bool with_normal, LevelSums* sums) const {
+void Tracker::addEdges(const std::vector<ReferenceEdge>& edges, int level, const Eigen::Isometry3d& T_cam_kf,
+                       const NearestNeighborFieldView& field, std::size_t begin, std::size_t end, bool with_normal,
+                       LevelSums* sums) const {
   std::vector<EdgeResidual> residuals;
-  sums->cost += edge_residuals_[static_cast<std::size_t>(level)].evaluate(edges_, begin, end, field, T_cam_kf, &residuals);
+  sums->cost += edge_residuals_[static_cast<std::size_t>(level)].evaluate(edges, begin, end, field, T_cam_kf, &residuals);
   for (const EdgeResidual& r : residuals) {
     if (with_normal) {
       sums->normal.H.noalias() += r.weight * r.jacobian.transpose() * r.jacobian;
@@ -183,10 +214,10 @@ Tracker::LevelSums& Tracker::LevelSums::operator+=(const LevelSums& other) {
   return *this;
 }
 
-double Tracker::optimizeLevel(int level, const ImagePyramid& frame, const NearestNeighborFieldView* field,
+double Tracker::optimizeLevel(const TrackedPoints& points, int level, const ImagePyramid& frame, const NearestNeighborFieldView* field,
                               const ForwardMotionPrior& prior, Eigen::Isometry3d* T, int* iterations) const {
   Normal normal;
-  double cost = evaluate(level, *T, frame, field, prior, &normal, nullptr);
+  double cost = evaluate(points, level, *T, frame, field, prior, &normal, nullptr);
   double lambda = 1e-3;
   for (int it = 0; it < options_.iterations_per_level; ++it) {
     ++*iterations;
@@ -195,7 +226,7 @@ double Tracker::optimizeLevel(int level, const ImagePyramid& frame, const Neares
     const Vector6d step = -damped.ldlt().solve(normal.b);
     const Eigen::Isometry3d candidate = orthonormalized(se3Exp(step) * *T);
     Normal candidate_normal;
-    const double candidate_cost = evaluate(level, candidate, frame, field, prior, &candidate_normal, nullptr);
+    const double candidate_cost = evaluate(points, level, candidate, frame, field, prior, &candidate_normal, nullptr);
     if (candidate_cost < cost) {
       *T = candidate;
       cost = candidate_cost;
@@ -212,8 +243,48 @@ double Tracker::optimizeLevel(int level, const ImagePyramid& frame, const Neares
 
 TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFieldView* field,
                               const std::vector<Eigen::Isometry3d>& guesses, double previous_inlier_ratio) const {
-  if (!keyframe_ || references_.empty()) return TrackingResult();
-  const int levels = std::min({static_cast<int>(references_.size()), frame.levels(),
+  if (!keyframe_ || all_.empty()) return TrackingResult();
+  TrackingResult result = trackWith(all_, frame, field, guesses, previous_inlier_ratio);
+  if (unmoving_.empty()) return result;
+  // Traffic alongside drags the pose with it: then its points agree with the frame clearly better
+  // than the static structure's. Tracked without them, the static structure must agree better and
+  // they worse (parked cars, close by and well textured, agree better too, but with both poses).
+  const MovableAgreement with_movable = movableAgreement(result.T_cam_kf, frame);
+  if (with_movable.movable - with_movable.other <= options_.movable_disagreement) return result;
+  TrackingResult without = trackWith(unmoving_, frame, field, guesses, previous_inlier_ratio);
+  without.iterations += result.iterations;
+  const MovableAgreement without_movable = movableAgreement(without.T_cam_kf, frame);
+  if (without_movable.other <= with_movable.other || without_movable.movable > with_movable.movable - kMovingDisagreement) {
+    result.iterations = without.iterations;
+    return result;
+  }
+  without.without_movable = true;
+  return without;
+}
+
+Tracker::MovableAgreement Tracker::movableAgreement(const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame) const {
+  const LevelReference& reference = all_.references[0];
+  std::vector<int> block_inliers(reference.point_index.size(), -1);
+  forEachSlice([&](int slice) {
+    LevelSums sums;
+    const auto [begin, end] = sliceRange(reference.point_index.size(), slice);
+    addPhotometric(reference, T_cam_kf, frame.level(0), begin, end, false, &sums, block_inliers.data());
+  });
+  int inliers[2] = {0, 0}, blocks[2] = {0, 0};  // [movable, other]
+  for (std::size_t block = 0; block < block_inliers.size(); ++block) {
+    const MapPoint& point = keyframe_->points[static_cast<std::size_t>(reference.point_index[block])];
+    if (!point.isEdge() || block_inliers[block] < 0) continue;  // supportive points carry no class
+    const int kind = isMovable(point.class_mask) ? 0 : 1;
+    inliers[kind] += block_inliers[block];
+    ++blocks[kind];
+  }
+  const auto ratio = [&](int kind) { return blocks[kind] ? static_cast<double>(inliers[kind]) / (kPattern * blocks[kind]) : 0.0; };
+  return {ratio(0), ratio(1)};
+}
+
+TrackingResult Tracker::trackWith(const TrackedPoints& points, const ImagePyramid& frame, const NearestNeighborFieldView* field,
+                                  const std::vector<Eigen::Isometry3d>& guesses, double previous_inlier_ratio) const {
+  const int levels = std::min({static_cast<int>(points.references.size()), frame.levels(),
                                field ? static_cast<int>(field->levels.size()) : 99});
   // The first guess (constant velocity) is taken when it tracks well. Otherwise the other guesses
   // are optimised on the coarsest level only (where the basin is found), the one with the lowest
@@ -225,8 +296,8 @@ TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFi
   const ForwardMotionPrior prior(options_.forward_motion, predicted_travel);
   const auto refine = [&](TrackingResult* attempt, int from_level) {
     for (int level = from_level; level >= 0; --level)
-      optimizeLevel(level, frame, field, prior, &attempt->T_cam_kf, &attempt->iterations);
-    return evaluate(0, attempt->T_cam_kf, frame, field, prior, nullptr, attempt);
+      optimizeLevel(points, level, frame, field, prior, &attempt->T_cam_kf, &attempt->iterations);
+    return evaluate(points, 0, attempt->T_cam_kf, frame, field, prior, nullptr, attempt);
   };
   TrackingResult result;
   result.T_cam_kf = candidates[0];
@@ -239,7 +310,7 @@ TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFi
       TrackingResult attempt;
       attempt.T_cam_kf = candidates[g];
       attempt.guess = static_cast<int>(g);
-      const double coarse = optimizeLevel(levels - 1, frame, field, prior, &attempt.T_cam_kf, &iterations);
+      const double coarse = optimizeLevel(points, levels - 1, frame, field, prior, &attempt.T_cam_kf, &iterations);
       if (coarse < best_coarse) {
         best_coarse = coarse;
         best = attempt;
@@ -263,7 +334,7 @@ TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFi
     ++counted;
   }
   result.mean_flow = counted ? flow / counted : 0.0;
-  result.points = static_cast<int>(references_[0].point_index.size());
+  result.points = static_cast<int>(points.references[0].point_index.size());
   const double blocks = result.points;
   result.ok = blocks > 0 && result.points_in_view >= options_.min_points_in_view * blocks &&
               result.photometric_inliers >= options_.min_inlier_ratio * std::max(1, result.photometric_residuals);

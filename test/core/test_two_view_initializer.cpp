@@ -3,53 +3,18 @@
 #include <cmath>
 #include <limits>
 
-#include <opencv2/imgproc.hpp>
-
 #include "semantic_edge_vo/two_view_initializer.h"
+#include "truck_scene.h"
 
 namespace semantic_edge_vo {
 namespace {
 
-// A forward drive past a truck that overtakes close by on the right: ground (y = 1.6 m below the
-// camera) and a wall 60 m ahead stand still; the truck's side (the plane x = 2.5 m, 3.5 m tall,
-// 40 m long, its rear beside the camera at first) drives 0.8 m a frame while the camera drives 0.5,
-// so against the truck the camera backs up. Each surface is painted with the same blurred noise, looked up by its own coordinates.
+// The truck overtakes: it drives 0.8 m a frame while the camera drives 0.5, so against the truck
+// the camera backs up.
 constexpr double kCameraStep = 0.5, kTruckStep = 0.8;
 
-cv::Mat noiseTexture() {
-  cv::Mat texture(512, 512, CV_32FC1);
-  cv::RNG rng(7);
-  rng.fill(texture, cv::RNG::UNIFORM, 0.0, 255.0);
-  cv::GaussianBlur(texture, texture, cv::Size(0, 0), 2.0);
-  cv::normalize(texture, texture, 20.0, 235.0, cv::NORM_MINMAX);
-  return texture;
-}
-
-double lookUp(const cv::Mat& texture, double a, double b) {
-  const double texels_per_metre = 40.0;
-  const int i = static_cast<int>(std::floor(a * texels_per_metre)) & 511, j = static_cast<int>(std::floor(b * texels_per_metre)) & 511;
-  return texture.at<float>(j, i);
-}
-
 cv::Mat renderOvertakingTruck(const PinholeCamera& camera, const cv::Mat& texture, int frame) {
-  cv::Mat gray(camera.height, camera.width, CV_8UC1);
-  const double camera_z = kCameraStep * frame, truck_rear = -10.0 + kTruckStep * frame;
-  for (int v = 0; v < camera.height; ++v) {
-    for (int u = 0; u < camera.width; ++u) {
-      const Eigen::Vector3d ray = camera.backProject(u, v, 1.0);
-      double nearest = (60.0 - camera_z) / ray.z(), value = lookUp(texture, ray.x() * nearest, ray.y() * nearest);
-      if (ray.y() > 0.0 && 1.6 / ray.y() < nearest) {
-        nearest = 1.6 / ray.y();
-        value = lookUp(texture, ray.x() * nearest, camera_z + nearest);
-      }
-      if (ray.x() > 0.0 && 2.5 / ray.x() < nearest) {
-        const double t = 2.5 / ray.x(), along = camera_z + t - truck_rear, up = ray.y() * t;
-        if (along >= 0.0 && along <= 40.0 && up >= -1.9 && up <= 1.6) value = lookUp(texture, along, up) * 0.8 + 40.0;
-      }
-      gray.at<std::uint8_t>(v, u) = cv::saturate_cast<std::uint8_t>(value);
-    }
-  }
-  return gray;
+  return testing_scenes::renderTruckScene(camera, texture, kCameraStep * frame, -10.0 + kTruckStep * frame).gray;
 }
 
 // The truck is the larger consensus: a denser grid of pixels on the right half of the image.
@@ -63,7 +28,7 @@ std::vector<Eigen::Vector2f> candidatePixels(const PinholeCamera& camera) {
 // Initialises on the drive; the last camera's travel direction in the first frame, NaN on failure.
 Eigen::Vector3d initialTravel(const Eigen::Vector3d& expected_travel) {
   const PinholeCamera camera = kittiCamera();
-  const cv::Mat texture = noiseTexture();
+  const cv::Mat texture = testing_scenes::noiseTexture();
   InitializerOptions options;
   options.min_parallax = 0.01;
   TwoViewInitializer initializer(options, camera);
