@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
 
   Trajectory trajectory;
   std::ostringstream timing;
-  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe guess inlier_ratio\n";
+  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe guess inlier_ratio without_movable\n";
   int trusted = 0, keyframes = 0, lost = 0, without_movable = 0;
   std::vector<double> totals;
   for (const FramePose& pose : poses) {
@@ -196,7 +196,7 @@ int main(int argc, char** argv) {
     totals.push_back(total);
     timing << pose.index << ' ' << segmenter_ms[i] << ' ' << intake_ms[i] << ' ' << pose.tracking_ms << ' ' << pose.mapping_ms
            << ' ' << total << ' ' << pose.window_ms << ' ' << pose.tracking.iterations << ' ' << pose.trusted << ' ' << toString(pose.state) << ' ' << pose.keyframe
-           << ' ' << pose.tracking.guess << ' ' << pose.tracking.inlierRatio() << '\n';
+           << ' ' << pose.tracking.guess << ' ' << pose.tracking.inlierRatio() << ' ' << pose.tracking.without_movable << '\n';
     trusted += pose.trusted;
     keyframes += pose.keyframe;
     lost += pose.state == OdometryState::kLost;
