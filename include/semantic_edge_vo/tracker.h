@@ -30,7 +30,8 @@ struct TrackerOptions {
   /// driving alongside at our speed agrees with a pose dragged along with it: when the keyframe's
   /// edge points of these classes agree with the tracked frame clearly better than its other edge
   /// points, the frame is tracked again without them (see movable_disagreement). Off by default:
-  /// over 18 synthetic highway runs it did better in 7 and worse in 9 (README, Evaluation).
+  /// over 18 synthetic highway runs it did better in 7 and worse in 9, by more than 1 % (README,
+  /// Evaluation).
   std::string movable_classes;
   /// "Clearly better": the movable edge points' level-0 photometric inlier ratio exceeds the other
   /// edge points' by more than this. The pose without them is taken when the other edge points

@@ -243,18 +243,20 @@ double Tracker::optimizeLevel(const TrackedPoints& points, int level, const Imag
 
 TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFieldView* field,
                               const std::vector<Eigen::Isometry3d>& guesses, double previous_inlier_ratio) const {
-  if (!keyframe_ || all_.empty()) return TrackingResult();
+  if (!keyframe_ || all_.references.empty()) return TrackingResult();
   TrackingResult result = trackWith(all_, frame, field, guesses, previous_inlier_ratio);
   if (unmoving_.empty()) return result;
   // Traffic alongside drags the pose with it: then its points agree with the frame clearly better
   // than the static structure's. Tracked without them, the static structure must agree better and
   // they worse (parked cars, close by and well textured, agree better too, but with both poses).
-  const MovableAgreement with_movable = movableAgreement(result.T_cam_kf, frame);
-  if (with_movable.movable - with_movable.other <= options_.movable_disagreement) return result;
+  const MovableAgreement at_tracked = movableAgreement(result.T_cam_kf, frame);
+  if (at_tracked.movable - at_tracked.other <= options_.movable_disagreement) return result;
   TrackingResult without = trackWith(unmoving_, frame, field, guesses, previous_inlier_ratio);
   without.iterations += result.iterations;
-  const MovableAgreement without_movable = movableAgreement(without.T_cam_kf, frame);
-  if (without_movable.other <= with_movable.other || without_movable.movable > with_movable.movable - kMovingDisagreement) {
+  const MovableAgreement at_retracked = movableAgreement(without.T_cam_kf, frame);
+  // A trusted pose is not traded for one that is not.
+  if ((result.ok && !without.ok) || at_retracked.other <= at_tracked.other ||
+      at_retracked.movable > at_tracked.movable - kMovingDisagreement) {
     result.iterations = without.iterations;
     return result;
   }

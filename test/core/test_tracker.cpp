@@ -198,6 +198,7 @@ TEST(Tracker, AParkedTruckIsTrackedWithTheRest) {
   TrackerOptions eager = checkingMovable();
   eager.movable_disagreement = 0.05;
   const auto [checked, checked_error] = trackPastTruck(0.0, eager, {kDrivingGuess});
+  EXPECT_GT(checked.iterations, result.iterations);  // tracked again
   EXPECT_FALSE(checked.without_movable);
   EXPECT_LT(checked_error, 0.05);
 }
