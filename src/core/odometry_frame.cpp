@@ -1,4 +1,5 @@
 #include "semantic_edge_vo/odometry_frame.h"
+#include "semantic_edge_vo/class_table.h"
 
 namespace semantic_edge_vo {
 
@@ -61,7 +62,7 @@ std::shared_ptr<const OdometryFrame> FrameBuilder::build(int index, double time,
 }
 
 std::vector<std::string> FrameBuilder::classNames() const {
-  return options_.intake.mode == IntakeMode::kCanny ? std::vector<std::string>{"edge"} : class_names_;
+  return options_.intake.mode == IntakeMode::kCanny ? ClassTable::singleEdgeClass().names() : class_names_;
 }
 
 }  // namespace semantic_edge_vo

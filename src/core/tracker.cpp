@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "semantic_edge_vo/class_table.h"
 #include "semantic_edge_vo/nearest_neighbor_field.h"
 #include "semantic_edge_vo/parallel_slices.h"
 #include "semantic_edge_vo/point_sampler.h"
@@ -43,8 +44,7 @@ std::string TrackerOptions::validate() const {
 
 void Tracker::setClassNames(const std::vector<std::string>& class_names) {
   movable_mask_ = classMaskOf(class_names, options_.movable_classes);
-  const std::size_t classes = std::min<std::size_t>(class_names.size(), 32);
-  unknown_class_mask_ = classes == 32 ? ~0u : (1u << classes) - 1u;
+  unknown_class_mask_ = everyClassMask(class_names.size());
   if (keyframe_) setKeyframe(keyframe_);
 }
 

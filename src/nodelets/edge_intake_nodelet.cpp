@@ -259,7 +259,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
       if (!extractEdges(input, gray, extractor, &edges, &evidence)) return;
       frame->intake_mode = toString(options_.mode);
     } else {
-      edges = extractor.cannyEdges(gray, classes_.size() >= 32 ? ~0u : (1u << classes_.size()) - 1u);
+      edges = extractor.cannyEdges(gray, everyClassMask(static_cast<std::size_t>(classes_.size())));
       frame->intake_mode = toString(IntakeMode::kCanny);
     }
     // Canny edges (the mode, or the fallback) carry every class: nothing to leave out.
