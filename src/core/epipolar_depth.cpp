@@ -136,6 +136,17 @@ bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const Pyram
   return measurement->inverse_depth > 0.0;
 }
 
+bool searchEpipolarNarrowed(const MapPoint& point, const PyramidLevel& host, const EpipolarTarget* narrowing,
+                            const EpipolarTarget& target, const EpipolarSearchOptions& options, DepthMeasurement* measurement) {
+  MapPoint bounded = point;
+  DepthMeasurement narrowed;
+  if (narrowing && searchEpipolar(point, host, *narrowing->level, narrowing->edges, narrowing->T_target_host, options, &narrowed)) {
+    bounded.inverse_depth = narrowed.inverse_depth;
+    bounded.inverse_depth_variance = narrowed.variance;
+  }
+  return searchEpipolar(bounded, host, *target.level, target.edges, target.T_target_host, options, measurement);
+}
+
 bool fuseDepth(const DepthMeasurement& measurement, MapPoint* point) {
   if (point->observations == 0) {
     point->inverse_depth = measurement.inverse_depth;

@@ -247,7 +247,7 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
     pose.tracking_ms = waiting_[j].ms + elapsedMs(frame_start);
     const auto mapping_start = std::chrono::steady_clock::now();
     if (result.ok) {
-      refineDepths(frame_j, result.T_cam_kf);
+      last_tracked_ = {waiting_[j].frame, refineDepths(frame_j, result.T_cam_kf), result.T_cam_kf};
       followCorners(frame_j);
     }
     pose.mapping_ms = elapsedMs(mapping_start);
@@ -338,6 +338,8 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   if (pose.tracking.mean_flow > options_.keyframe_flow || few_in_view || interval) {
     pose.T_world_cam = makeKeyframe(frame, std::move(frame_edges), pose.T_world_cam, &pose);
     pose.keyframe = true;
+  } else {
+    last_tracked_ = {frame, std::move(frame_edges), pose.tracking.T_cam_kf};
   }
   pose.mapping_ms = elapsedMs(mapping_start);
   remember(pose);
@@ -360,7 +362,7 @@ std::shared_ptr<const SharedClassEdgeTest> Odometry::refineDepths(const Odometry
   const PyramidLevel& host = active_->frame->pyramid->level(0);
   const PyramidLevel& target = frame.pyramid->level(0);
   std::shared_ptr<const SharedClassEdgeTest> edges = edgeTestOf(frame, options_.epipolar.edge_radius);
-  measureDepths(host, target, edges.get(), T_frame_kf, &active_->points);
+  measureDepths(host, {&target, edges.get(), T_frame_kf}, nullptr, &active_->points);
   tracker_.setKeyframe(active_);
   return edges;
 }
@@ -384,13 +386,14 @@ Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFra
   // triangulated from it: points triangulated from the tracked pose agree with its error and would
   // pin it there (a yaw error leaves a left-right depth gradient that makes the next yaw error).
   if (options_.optimize_window) optimizeWindow(frame->index, pose);
-  triangulatePoints(keyframe.get(), *active_);
+  before_active_ = last_tracked_;
+  triangulatePoints(keyframe.get(), *active_, &before_active_);
   setActiveKeyframe(keyframe);
   frames_since_keyframe_ = 0;
   return keyframe->T_world_cam;
 }
 
-void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const {
+void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous, const TrackedFrame* nearby) const {
   keyframe->points = keyframe->frame->candidates;
   // Prior depths: the previous keyframe's measured points, seen from the new keyframe.
   const Eigen::Isometry3d T_new_old = keyframe->T_world_cam.inverse() * previous.T_world_cam;
@@ -402,21 +405,29 @@ void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) c
     if (p.z() > 1e-3 && camera_.contains(pixel.x(), pixel.y())) samples.push_back({pixel, 1.0 / p.z()});
   }
   propagateDepths(samples, camera_, options_.depth_neighbour_radius, 1.0 / options_.initializer.median_depth, &keyframe->points);
-  // Measure the new points at once against the previous keyframe: the widest baseline at hand.
-  const Eigen::Isometry3d T_old_new = T_new_old.inverse();
   const PyramidLevel& host = keyframe->frame->pyramid->level(0);
   const std::shared_ptr<const SharedClassEdgeTest> previous_edges =
       previous.edge_test ? previous.edge_test : edgeTestOf(*previous.frame, options_.epipolar.edge_radius);
-  measureDepths(host, previous.frame->pyramid->level(0), previous_edges.get(), T_old_new, &keyframe->points);
+  const EpipolarTarget widest{&previous.frame->pyramid->level(0), previous_edges.get(), T_new_old.inverse()};
+  // The propagated priors are wide (half their inverse depth), and on a repetitive facade (a grid
+  // of windows) the next window along the previous keyframe's long epipolar line can match better
+  // than the right one (synthetic city: a third of a keyframe's edges at twice their inverse
+  // depth). The frame before the keyframe sees the points on a line a few times shorter, with
+  // fewer look-alikes on it: its match can narrow the search on the long line (an option: the
+  // depths get better, the trajectories did not; README, narrow_epipolar_search).
+  const bool narrow = options_.narrow_epipolar_search && nearby && nearby->frame && nearby->frame->index != previous.frame->index;
+  EpipolarTarget narrowing;
+  if (narrow) narrowing = {&nearby->frame->pyramid->level(0), nearby->edges.get(), nearby->T_frame_kf * T_new_old.inverse()};
+  measureDepths(host, widest, narrow ? &narrowing : nullptr, &keyframe->points);
 }
 
-void Odometry::measureDepths(const PyramidLevel& host, const PyramidLevel& target, const SharedClassEdgeTest* target_edges,
-                             const Eigen::Isometry3d& T_target_host, std::vector<MapPoint>* points) const {
+void Odometry::measureDepths(const PyramidLevel& host, const EpipolarTarget& target, const EpipolarTarget* narrowing,
+                             std::vector<MapPoint>* points) const {
   // Each point is searched and filtered on its own: both cores, same result as in order.
   forEachIndex(points->size(), [&](std::size_t i) {
     DepthMeasurement measurement;
     MapPoint& point = (*points)[i];
-    if (searchEpipolar(point, host, target, target_edges, T_target_host, options_.epipolar, &measurement)) fuseDepth(measurement, &point);
+    if (searchEpipolarNarrowed(point, host, narrowing, target, options_.epipolar, &measurement)) fuseDepth(measurement, &point);
   });
 }
 
@@ -442,12 +453,13 @@ Eigen::Isometry3d Odometry::mergeWindow(FramePose* pose) {
   T_world_before_ = orthonormalized(correction * T_world_before_);
   // The optimisation settled the active keyframe's pose without its points (see makeKeyframe), which
   // were triangulated from the tracked pose meanwhile: triangulate them again from the settled one.
-  if (keyframes_.size() >= 2) triangulatePoints(active_.get(), *keyframes_[keyframes_.size() - 2]);
+  if (keyframes_.size() >= 2) triangulatePoints(active_.get(), *keyframes_[keyframes_.size() - 2], &before_active_);
   return correction;
 }
 
 void Odometry::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {
   active_ = std::move(keyframe);
+  last_tracked_ = TrackedFrame();
   tracker_.setKeyframe(active_);
   if (keyframe_motion_.enabled()) keyframe_motion_.start(active_->id, active_->frame->index, gray8(*active_->frame));
 }

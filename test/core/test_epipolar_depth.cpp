@@ -110,5 +110,54 @@ TEST_F(EpipolarEdgeClasses, SupportivePointsIgnoreEdges) {
   EXPECT_NEAR(search({kA, kA, kA, 0u, kA}), 1.0 / kDepth, 0.002) << "the true step has no edge in the target";
 }
 
+// A facade of stripes 0.5 m apart (25 px at 10 m), seen by a camera moving 0.1 m, then 1 m to its
+// right; the prior (0.1 +- 0.05 /m, as propagated) spans disparities 0-112 px on the 1 m line.
+constexpr double kStripePeriod = 0.5;
+
+cv::Mat renderFacade(double camera_x) {
+  const PinholeCamera c = camera();
+  cv::Mat image(c.height, c.width, CV_8UC1);
+  for (int u = 0; u < c.width; ++u) {
+    const double x = (u - c.cx) / c.fx * kDepth + camera_x;
+    const double value = 100.0 + 60.0 * std::tanh(4.0 * std::sin(2.0 * M_PI * x / kStripePeriod));
+    for (int v = 0; v < c.height; ++v) image.at<std::uint8_t>(v, u) = cv::saturate_cast<std::uint8_t>(value);
+  }
+  return image;
+}
+
+class EpipolarFacade : public ::testing::Test {
+ protected:
+  EpipolarFacade() : host_(renderFacade(0.0), camera(), 1), near_(renderFacade(0.1), camera(), 1), far_(renderFacade(kBaseline), camera(), 1) {
+    point_.u = static_cast<float>(camera().cx);  // a stripe's edge (x = 0)
+    point_.v = 100.0f;
+    point_.inverse_depth = 1.0 / kDepth;
+    point_.inverse_depth_variance = std::pow(0.5 / kDepth, 2);
+    near_target_.level = &near_.level(0);
+    near_target_.T_target_host.translation() = Eigen::Vector3d(-0.1, 0.0, 0.0);
+    far_target_.level = &far_.level(0);
+    far_target_.T_target_host.translation() = Eigen::Vector3d(-kBaseline, 0.0, 0.0);
+  }
+
+  ImagePyramid host_, near_, far_;
+  EpipolarTarget near_target_, far_target_;
+  MapPoint point_;
+};
+
+TEST_F(EpipolarFacade, TheLongLineAloneFindsEveryStripeAlike) {
+  DepthMeasurement measurement;
+  const bool found = searchEpipolarNarrowed(point_, host_.level(0), nullptr, far_target_, EpipolarSearchOptions(), &measurement);
+  EXPECT_TRUE(!found || std::abs(measurement.inverse_depth - 1.0 / kDepth) > 0.01) << measurement.inverse_depth;
+}
+
+TEST_F(EpipolarFacade, TheShortLineNarrowsTheLongOneToTheRightStripe) {
+  DepthMeasurement measurement;
+  ASSERT_TRUE(searchEpipolarNarrowed(point_, host_.level(0), &near_target_, far_target_, EpipolarSearchOptions(), &measurement));
+  EXPECT_NEAR(measurement.inverse_depth, 1.0 / kDepth, 0.002);
+  // Measured on the long line: a tenth of the short one's sigma (ten times the baseline).
+  DepthMeasurement near_only;
+  ASSERT_TRUE(searchEpipolar(point_, host_.level(0), near_.level(0), nullptr, near_target_.T_target_host, EpipolarSearchOptions(), &near_only));
+  EXPECT_LT(std::sqrt(measurement.variance), 0.2 * std::sqrt(near_only.variance));
+}
+
 }  // namespace
 }  // namespace semantic_edge_vo
