@@ -135,6 +135,9 @@ class Odometry {
   /// are triangulated again from its settled pose (the caller hands it to the tracker).
   /// @return the correction of the active keyframe's pose (identity when it did not move)
   Eigen::Isometry3d mergeWindow(FramePose* pose);
+  /// Keeps a frame tracked against the active keyframe as last_tracked_ (narrow_epipolar_search only).
+  void rememberTracked(std::shared_ptr<const OdometryFrame> frame, std::shared_ptr<const SharedClassEdgeTest> edges,
+                       const Eigen::Isometry3d& T_frame_kf);
   void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);
   /// Follows the active keyframe's corners into a tracked frame (KeyframeMotion).
   void followCorners(const OdometryFrame& frame);
@@ -177,7 +180,7 @@ class Odometry {
   std::vector<WaitingFrame> waiting_;
   std::deque<std::shared_ptr<Keyframe>> keyframes_;
   std::shared_ptr<Keyframe> active_;
-  TrackedFrame last_tracked_;      ///< the newest frame tracked against active_ (empty after a keyframe)
+  TrackedFrame last_tracked_;      ///< the newest frame tracked against active_ (empty after a keyframe, and without narrow_epipolar_search)
   TrackedFrame before_active_;     ///< the frame tracked last before active_ was made, against the keyframe before it
   int next_keyframe_id_ = 0;
   int frames_since_keyframe_ = 0;

@@ -247,7 +247,7 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
     pose.tracking_ms = waiting_[j].ms + elapsedMs(frame_start);
     const auto mapping_start = std::chrono::steady_clock::now();
     if (result.ok) {
-      last_tracked_ = {waiting_[j].frame, refineDepths(frame_j, result.T_cam_kf), result.T_cam_kf};
+      rememberTracked(waiting_[j].frame, refineDepths(frame_j, result.T_cam_kf), result.T_cam_kf);
       followCorners(frame_j);
     }
     pose.mapping_ms = elapsedMs(mapping_start);
@@ -339,7 +339,7 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
     pose.T_world_cam = makeKeyframe(frame, std::move(frame_edges), pose.T_world_cam, &pose);
     pose.keyframe = true;
   } else {
-    last_tracked_ = {frame, std::move(frame_edges), pose.tracking.T_cam_kf};
+    rememberTracked(frame, std::move(frame_edges), pose.tracking.T_cam_kf);
   }
   pose.mapping_ms = elapsedMs(mapping_start);
   remember(pose);
@@ -415,7 +415,7 @@ void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous, c
   // depth). The frame before the keyframe sees the points on a line a few times shorter, with
   // fewer look-alikes on it: its match can narrow the search on the long line (an option: the
   // depths get better, the trajectories did not; README, narrow_epipolar_search).
-  const bool narrow = options_.narrow_epipolar_search && nearby && nearby->frame && nearby->frame->index != previous.frame->index;
+  const bool narrow = nearby && nearby->frame;
   EpipolarTarget narrowing;
   if (narrow) narrowing = {&nearby->frame->pyramid->level(0), nearby->edges.get(), nearby->T_frame_kf * T_new_old.inverse()};
   measureDepths(host, widest, narrow ? &narrowing : nullptr, &keyframe->points);
@@ -455,6 +455,11 @@ Eigen::Isometry3d Odometry::mergeWindow(FramePose* pose) {
   // were triangulated from the tracked pose meanwhile: triangulate them again from the settled one.
   if (keyframes_.size() >= 2) triangulatePoints(active_.get(), *keyframes_[keyframes_.size() - 2], &before_active_);
   return correction;
+}
+
+void Odometry::rememberTracked(std::shared_ptr<const OdometryFrame> frame, std::shared_ptr<const SharedClassEdgeTest> edges,
+                               const Eigen::Isometry3d& T_frame_kf) {
+  if (options_.narrow_epipolar_search) last_tracked_ = {std::move(frame), std::move(edges), T_frame_kf};
 }
 
 void Odometry::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {

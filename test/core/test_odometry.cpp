@@ -5,13 +5,15 @@
 // service) starts a new map there. A car that stops at a light and drives on is tracked all along,
 // on the map it had, also when the first second of its start never reaches the odometry (dropped
 // frames) or a van blocks the view while it stands. Frames dropped from the stream are counted from
-// the stamps; a loss it never recovers from predicts on for 5 s, then stands.
+// the stamps; a loss it never recovers from predicts on for 5 s, then stands. With
+// narrow_epipolar_search its new keyframes' depths are better.
 #include <cstdio>
 #include <map>
 
 #include <gtest/gtest.h>
 
 #include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/keyframe_depth_check.h"
 #include "semantic_edge_vo/odometry.h"
 #include "semantic_edge_vo/odometry_frame.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
@@ -36,6 +38,7 @@ struct DriveResult {
   std::map<int, FramePose> poses;  ///< by frame index, every frame once
   std::vector<Eigen::Isometry3d> truth;
   std::vector<double> speed;  ///< of the car, m/s
+  std::vector<DepthCheck> new_keyframe_depths;  ///< of each keyframe as it was made, against the true depths
 };
 
 enum class Event {
@@ -47,6 +50,8 @@ enum class Event {
   kBlindedWhileDriving,
   kFramesDropped,
   kBlindedForGood,
+  kNone,
+  kNarrowedSearch,  ///< no event, with narrow_epipolar_search
 };
 
 constexpr int kStopFrames = 120;       ///< the drive with a stop: to the light (braking from about 15 m), 3 s there, and on
@@ -84,7 +89,9 @@ DriveResult drive(Event event) {
   }
   synthetic::SyntheticSequence sequence(options);
   const FrameBuilder builder(FrameBuilderOptions{}, sequence.camera(), ClassTable::cityscapes().names());
-  Odometry odometry(shippedOdometryOptions(), sequence.camera());
+  OdometryOptions odometry_options = shippedOdometryOptions();
+  odometry_options.narrow_epipolar_search = event == Event::kNarrowedSearch;
+  Odometry odometry(odometry_options, sequence.camera());
   DriveResult run;
   // As in the tracking nodelet, the odometry numbers the frames it receives: dropped frames are seen
   // in the stamps only. drive_index maps its numbers back to the drive's frames.
@@ -98,6 +105,8 @@ DriveResult drive(Event event) {
   };
   const int frames = stop || event == Event::kBlindedForGood ? kStopFrames : kFrames;
   int last_standing = -1, first_standing = -1;
+  std::vector<cv::Mat> depths;  ///< of the frames the odometry received, by its numbering
+  std::shared_ptr<Keyframe> last_keyframe;
   for (int i = 0; i < frames; ++i) {
     synthetic::SyntheticFrame frame = sequence.frame(i);
     run.truth.push_back(frame.T_world_cam);
@@ -115,6 +124,11 @@ DriveResult drive(Event event) {
     drive_index.push_back(i);
     EXPECT_FALSE(error) << error.reason;
     keep(odometry.process(odometry_frame));
+    depths.push_back(frame.depth);
+    const std::shared_ptr<Keyframe> newest = odometry.keyframes().empty() ? nullptr : odometry.keyframes().back();
+    if (newest && newest != last_keyframe && newest->frame->index == odometry_frame->index)
+      run.new_keyframe_depths.push_back(checkDepths(newest->points, depths.back()));
+    last_keyframe = newest;
   }
   keep(odometry.flush());
   return run;
@@ -181,6 +195,31 @@ TEST(Odometry, ARestartStartsANewMapWhereTheOldOneWas) {
   EXPECT_TRUE(run.poses.at(kEvent).recovered) << "the frame after the restart starts the new map";
   EXPECT_TRUE(run.poses.at(kEvent).keyframe);
   expectContinuousAcross(run, "a restart");
+}
+
+/// Edge points of the keyframes, as they were made, whose depth was wrong (DepthCheck), and all.
+std::pair<int, int> wrongEdgeDepths(const DriveResult& run) {
+  std::pair<int, int> counts;
+  for (const DepthCheck& check : run.new_keyframe_depths) {
+    counts.first += check.edges_wrong;
+    counts.second += check.edges;
+  }
+  return counts;
+}
+
+TEST(Odometry, NewKeyframePointsSearchedThroughTheFrameBeforeGetBetterDepths) {
+  // The city's facades repeat (windows, bricks): along the previous keyframe's long epipolar line
+  // the next window can match better than the right one; the frame before the keyframe narrows it.
+  const DriveResult plain = drive(Event::kNone), narrowed = drive(Event::kNarrowedSearch);
+  ASSERT_EQ(narrowed.poses.size(), static_cast<std::size_t>(kFrames)) << "every frame gets a pose";
+  for (int i = 0; i < kFrames; ++i) EXPECT_TRUE(narrowed.poses.at(i).trusted) << "frame " << i;
+  expectContinuousAcross(narrowed, "no event, narrowed epipolar searches");
+  const auto [plain_wrong, plain_edges] = wrongEdgeDepths(plain);
+  const auto [narrowed_wrong, narrowed_edges] = wrongEdgeDepths(narrowed);
+  std::printf("odometry, new keyframes' wrong edge depths: %d of %d plain, %d of %d narrowed\n", plain_wrong, plain_edges,
+              narrowed_wrong, narrowed_edges);
+  ASSERT_GT(narrowed_edges, 0);
+  EXPECT_LT(static_cast<double>(narrowed_wrong) / narrowed_edges, 0.8 * plain_wrong / std::max(1, plain_edges));
 }
 
 /// Frames of the car at rest (the camera still bounces a few millimetres).
