@@ -140,7 +140,10 @@ bool searchEpipolarNarrowed(const MapPoint& point, const PyramidLevel& host, con
                             const EpipolarTarget& target, const EpipolarSearchOptions& options, DepthMeasurement* measurement) {
   MapPoint bounded = point;
   DepthMeasurement narrowed;
-  if (narrowing && searchEpipolar(point, host, *narrowing->level, narrowing->edges, narrowing->T_target_host, options, &narrowed)) {
+  // Only a match tighter than the prior narrows: on a line of a few pixels (little parallax in the
+  // frame before) the match is hardly unique and its sigma may exceed the prior's.
+  if (narrowing && searchEpipolar(point, host, *narrowing->level, narrowing->edges, narrowing->T_target_host, options, &narrowed) &&
+      narrowed.variance < point.inverse_depth_variance) {
     bounded.inverse_depth = narrowed.inverse_depth;
     bounded.inverse_depth_variance = narrowed.variance;
   }

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace semantic_edge_vo {
 namespace {
@@ -126,6 +127,7 @@ void Odometry::restart() {
   recovering_ = true;
   // The speed it drove at, not the last frame's: traffic that made the loss dragged the last frames
   // towards standing (a truck alongside at our speed), and the new map would take that scale.
+  last_tracked_ = before_active_ = TrackedFrame();  // of the map given up
   const double driving_speed = drivingMotion().head<3>().norm();
   speed_at_restart_ = driving_speed > 0.0 ? driving_speed : frameMotion().translation().norm();
 }
@@ -386,7 +388,7 @@ Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFra
   // triangulated from it: points triangulated from the tracked pose agree with its error and would
   // pin it there (a yaw error leaves a left-right depth gradient that makes the next yaw error).
   if (options_.optimize_window) optimizeWindow(frame->index, pose);
-  before_active_ = last_tracked_;
+  before_active_ = std::exchange(last_tracked_, TrackedFrame());
   triangulatePoints(keyframe.get(), *active_, &before_active_);
   setActiveKeyframe(keyframe);
   frames_since_keyframe_ = 0;

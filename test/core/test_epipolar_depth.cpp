@@ -127,19 +127,25 @@ cv::Mat renderFacade(double camera_x) {
 
 class EpipolarFacade : public ::testing::Test {
  protected:
-  EpipolarFacade() : host_(renderFacade(0.0), camera(), 1), near_(renderFacade(0.1), camera(), 1), far_(renderFacade(kBaseline), camera(), 1) {
+  EpipolarFacade()
+      : host_(renderFacade(0.0), camera(), 1),
+        near_(renderFacade(0.1), camera(), 1),
+        nearest_(renderFacade(0.02), camera(), 1),
+        far_(renderFacade(kBaseline), camera(), 1) {
     point_.u = static_cast<float>(camera().cx);  // a stripe's edge (x = 0)
     point_.v = 100.0f;
     point_.inverse_depth = 1.0 / kDepth;
     point_.inverse_depth_variance = std::pow(0.5 / kDepth, 2);
     near_target_.level = &near_.level(0);
     near_target_.T_target_host.translation() = Eigen::Vector3d(-0.1, 0.0, 0.0);
+    nearest_target_.level = &nearest_.level(0);
+    nearest_target_.T_target_host.translation() = Eigen::Vector3d(-0.02, 0.0, 0.0);
     far_target_.level = &far_.level(0);
     far_target_.T_target_host.translation() = Eigen::Vector3d(-kBaseline, 0.0, 0.0);
   }
 
-  ImagePyramid host_, near_, far_;
-  EpipolarTarget near_target_, far_target_;
+  ImagePyramid host_, near_, nearest_, far_;
+  EpipolarTarget near_target_, nearest_target_, far_target_;
   MapPoint point_;
 };
 
@@ -153,10 +159,25 @@ TEST_F(EpipolarFacade, TheShortLineNarrowsTheLongOneToTheRightStripe) {
   DepthMeasurement measurement;
   ASSERT_TRUE(searchEpipolarNarrowed(point_, host_.level(0), &near_target_, far_target_, EpipolarSearchOptions(), &measurement));
   EXPECT_NEAR(measurement.inverse_depth, 1.0 / kDepth, 0.002);
-  // Measured on the long line: a tenth of the short one's sigma (ten times the baseline).
+  // Measured on the long line (ten times the baseline): well under the short one's sigma.
   DepthMeasurement near_only;
   ASSERT_TRUE(searchEpipolar(point_, host_.level(0), near_.level(0), nullptr, near_target_.T_target_host, EpipolarSearchOptions(), &near_only));
   EXPECT_LT(std::sqrt(measurement.variance), 0.2 * std::sqrt(near_only.variance));
+}
+
+TEST_F(EpipolarFacade, AMatchLessCertainThanThePriorLeavesTheSearchToThePrior) {
+  // 0.02 m: a line of about 2 px, whose match is less certain than the prior (0.7 px of 10 px per 1/m).
+  DepthMeasurement narrowed, plain;
+  const bool narrowed_found =
+      searchEpipolarNarrowed(point_, host_.level(0), &nearest_target_, far_target_, EpipolarSearchOptions(), &narrowed);
+  const bool plain_found = searchEpipolarNarrowed(point_, host_.level(0), nullptr, far_target_, EpipolarSearchOptions(), &plain);
+  ASSERT_EQ(narrowed_found, plain_found);
+  if (plain_found) EXPECT_EQ(narrowed.inverse_depth, plain.inverse_depth);
+  DepthMeasurement nearest_only;
+  ASSERT_TRUE(searchEpipolar(point_, host_.level(0), nearest_.level(0), nullptr, nearest_target_.T_target_host, EpipolarSearchOptions(),
+                             &nearest_only))
+      << "the short line has a match, only too uncertain to narrow";
+  EXPECT_GT(nearest_only.variance, point_.inverse_depth_variance);
 }
 
 }  // namespace
