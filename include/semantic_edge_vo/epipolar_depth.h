@@ -51,8 +51,7 @@ struct EpipolarTarget {
 /// searchEpipolar in `target`, bounded by a match in `narrowing` (a shorter baseline: its line is
 /// shorter and holds fewer look-alikes of the point, a repetitive facade's next window, say) instead
 /// of the point's prior; by the prior where `narrowing` is null, finds no match or one less certain
-/// than the prior. The narrowing match
-/// is not fused: the target's wider baseline measures the point.
+/// than the prior. The narrowing match is not fused: the target's wider baseline measures the point.
 bool searchEpipolarNarrowed(const MapPoint& point, const PyramidLevel& host, const EpipolarTarget* narrowing,
                             const EpipolarTarget& target, const EpipolarSearchOptions& options, DepthMeasurement* measurement);
 

@@ -123,8 +123,8 @@ class Odometry {
   };
   /// The keyframe's points from its frame's candidates: prior depths from the previous keyframe's
   /// measured points, then an epipolar search against the previous keyframe, narrowed by one in
-  /// `nearby` (the frame before the keyframe, tracked against `previous`; none when null or empty).
-  void triangulatePoints(Keyframe* keyframe, const Keyframe& previous, const TrackedFrame* nearby) const;
+  /// `nearby` (the frame before the keyframe, tracked against `previous`; none when empty).
+  void triangulatePoints(Keyframe* keyframe, const Keyframe& previous, const TrackedFrame& nearby) const;
   /// Epipolar search of each point of the host in the target (searchEpipolarNarrowed), fused into
   /// its depth filter.
   void measureDepths(const PyramidLevel& host, const EpipolarTarget& target, const EpipolarTarget* narrowing,

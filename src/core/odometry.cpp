@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
-#include <utility>
 
 namespace semantic_edge_vo {
 namespace {
@@ -125,9 +124,9 @@ void Odometry::restart() {
   if (state_ != OdometryState::kTracking) return;
   state_ = OdometryState::kInitializing;
   recovering_ = true;
+  last_tracked_ = before_active_ = TrackedFrame();  // of the map given up
   // The speed it drove at, not the last frame's: traffic that made the loss dragged the last frames
   // towards standing (a truck alongside at our speed), and the new map would take that scale.
-  last_tracked_ = before_active_ = TrackedFrame();  // of the map given up
   const double driving_speed = drivingMotion().head<3>().norm();
   speed_at_restart_ = driving_speed > 0.0 ? driving_speed : frameMotion().translation().norm();
 }
@@ -388,14 +387,14 @@ Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFra
   // triangulated from it: points triangulated from the tracked pose agree with its error and would
   // pin it there (a yaw error leaves a left-right depth gradient that makes the next yaw error).
   if (options_.optimize_window) optimizeWindow(frame->index, pose);
-  before_active_ = std::exchange(last_tracked_, TrackedFrame());
-  triangulatePoints(keyframe.get(), *active_, &before_active_);
+  before_active_ = last_tracked_;  // setActiveKeyframe forgets last_tracked_
+  triangulatePoints(keyframe.get(), *active_, before_active_);
   setActiveKeyframe(keyframe);
   frames_since_keyframe_ = 0;
   return keyframe->T_world_cam;
 }
 
-void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous, const TrackedFrame* nearby) const {
+void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous, const TrackedFrame& nearby) const {
   keyframe->points = keyframe->frame->candidates;
   // Prior depths: the previous keyframe's measured points, seen from the new keyframe.
   const Eigen::Isometry3d T_new_old = keyframe->T_world_cam.inverse() * previous.T_world_cam;
@@ -417,10 +416,9 @@ void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous, c
   // depth). The frame before the keyframe sees the points on a line a few times shorter, with
   // fewer look-alikes on it: its match can narrow the search on the long line (an option: the
   // depths get better, the trajectories did not; README, narrow_epipolar_search).
-  const bool narrow = nearby && nearby->frame;
   EpipolarTarget narrowing;
-  if (narrow) narrowing = {&nearby->frame->pyramid->level(0), nearby->edges.get(), nearby->T_frame_kf * T_new_old.inverse()};
-  measureDepths(host, widest, narrow ? &narrowing : nullptr, &keyframe->points);
+  if (nearby.frame) narrowing = {&nearby.frame->pyramid->level(0), nearby.edges.get(), nearby.T_frame_kf * T_new_old.inverse()};
+  measureDepths(host, widest, nearby.frame ? &narrowing : nullptr, &keyframe->points);
 }
 
 void Odometry::measureDepths(const PyramidLevel& host, const EpipolarTarget& target, const EpipolarTarget* narrowing,
@@ -455,7 +453,7 @@ Eigen::Isometry3d Odometry::mergeWindow(FramePose* pose) {
   T_world_before_ = orthonormalized(correction * T_world_before_);
   // The optimisation settled the active keyframe's pose without its points (see makeKeyframe), which
   // were triangulated from the tracked pose meanwhile: triangulate them again from the settled one.
-  if (keyframes_.size() >= 2) triangulatePoints(active_.get(), *keyframes_[keyframes_.size() - 2], &before_active_);
+  if (keyframes_.size() >= 2) triangulatePoints(active_.get(), *keyframes_[keyframes_.size() - 2], before_active_);
   return correction;
 }
 

@@ -108,7 +108,7 @@ DriveResult drive(Event event) {
   };
   const int frames = stop || event == Event::kBlindedForGood ? kStopFrames : kFrames;
   int last_standing = -1, first_standing = -1;
-  std::vector<cv::Mat> depths;  ///< of the frames the odometry received, by its numbering
+  std::map<int, cv::Mat> depths;  ///< true depths of the frames the odometry received since its oldest keyframe, by its numbering
   std::shared_ptr<Keyframe> last_keyframe;
   for (int i = 0; i < frames; ++i) {
     synthetic::SyntheticFrame frame = sequence.frame(i);
@@ -127,17 +127,18 @@ DriveResult drive(Event event) {
     drive_index.push_back(i);
     EXPECT_FALSE(error) << error.reason;
     keep(odometry.process(odometry_frame));
-    depths.push_back(frame.depth);
-    const std::shared_ptr<Keyframe> newest = odometry.keyframes().empty() ? nullptr : odometry.keyframes().back();
+    depths[odometry_frame->index] = frame.depth;
+    const auto& keyframes = odometry.keyframes();
+    const std::shared_ptr<Keyframe> newest = keyframes.empty() ? nullptr : keyframes.back();
     if (newest && newest != last_keyframe && newest->frame->index == odometry_frame->index) {
-      run.new_keyframe_depths.push_back(checkDepths(newest->points, depths.back()));
-      const auto& keyframes = odometry.keyframes();
+      run.new_keyframe_depths.push_back(checkDepths(newest->points, depths.at(newest->frame->index)));
       if (keyframes.size() >= 2) {
         const Keyframe& older = *keyframes[keyframes.size() - 2];
-        run.older_keyframe_depths.push_back(checkDepths(older.points, depths.at(static_cast<std::size_t>(older.frame->index))));
+        run.older_keyframe_depths.push_back(checkDepths(older.points, depths.at(older.frame->index)));
       }
     }
     last_keyframe = newest;
+    if (!keyframes.empty()) depths.erase(depths.begin(), depths.lower_bound(keyframes.front()->frame->index));
   }
   keep(odometry.flush());
   return run;
