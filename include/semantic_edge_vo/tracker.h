@@ -54,6 +54,10 @@ struct TrackingResult {
   double edge_rmse = 0.0;            ///< inliers, full-resolution px
   double mean_flow = 0.0;            ///< mean displacement of the keyframe points, full-resolution px
   bool without_movable = false;      ///< tracked without the movable classes' points (TrackerOptions::movable_classes)
+  /// The photometric inlier ratio of every keyframe point at T_cam_kf (level 0): inlierRatio(), or,
+  /// tracked without the movable classes, the ratio with them. Pass it as the next frame's
+  /// previous_inlier_ratio: that frame is tracked with every point first, and its ratio is compared.
+  double reference_inlier_ratio = 0.0;
 
   /// Photometric inliers over photometric residuals (level 0).
   double inlierRatio() const { return static_cast<double>(photometric_inliers) / std::max(1, photometric_residuals); }
@@ -99,10 +103,10 @@ class Tracker {
     std::vector<ReferenceEdge> edges;        ///< the edge points with depth
     bool empty() const { return references.empty() || references[0].point_index.empty(); }
   };
-  /// Level-0 photometric inlier ratios of the keyframe's edge points at a pose (out-of-view ones
-  /// left out), of the movable classes and of the others.
+  /// Level-0 photometric inlier ratios at a pose (out-of-view points left out): of the keyframe's
+  /// edge points of the movable classes, of its other edge points, and of every point.
   struct MovableAgreement {
-    double movable = 0.0, other = 0.0;
+    double movable = 0.0, other = 0.0, all = 0.0;
   };
   /// Sums over a slice of the residuals of a level: cost, counts and normal equations.
   struct LevelSums {

@@ -289,7 +289,7 @@ bool Odometry::relocalize(const std::shared_ptr<const OdometryFrame>& frame, std
   // loss, and it explains the next frame just above min_inlier_ratio) is initialised anew.
   if (!result.ok || recent_inlier_ratios_.empty()) return false;
   const double usual_ratio = median({recent_inlier_ratios_.begin(), recent_inlier_ratios_.end()});
-  if (result.inlierRatio() < options_.tracker.accept_inlier_ratio * usual_ratio) return false;
+  if (result.reference_inlier_ratio < options_.tracker.accept_inlier_ratio * usual_ratio) return false;
   // Back on the map it had: the frames since the loss stay untrusted predictions.
   *poses = flush();
   for (const FramePose& pose : *poses) remember(pose);
@@ -314,7 +314,7 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   pose.keyframe_id = active_->id;
   pose.tracking = result;
   pose.tracking_ms = tracking_ms;
-  last_inlier_ratio_ = pose.tracking.ok ? pose.tracking.inlierRatio() : 1.0;
+  last_inlier_ratio_ = pose.tracking.ok ? pose.tracking.reference_inlier_ratio : 1.0;
   if (!pose.tracking.ok) {
     // Lost: report the prediction, untrusted; from the next frame on, try the map it had until a
     // new initialisation succeeds.
@@ -483,7 +483,7 @@ void Odometry::remember(const FramePose& pose) {
   const int indices = last_stamp_.index - before_stamp_.index;
   const double seconds = last_stamp_.time - before_stamp_.time;
   if (poses_seen_ >= 2 && indices > 0 && seconds > 0.0) keepLast(seconds / indices, kFrameIntervals, &frame_intervals_);
-  if (pose.trusted && pose.tracking.ok) keepLast(pose.tracking.inlierRatio(), kRecentInlierRatios, &recent_inlier_ratios_);
+  if (pose.trusted && pose.tracking.ok) keepLast(pose.tracking.reference_inlier_ratio, kRecentInlierRatios, &recent_inlier_ratios_);
   if (!pose.trusted || poses_seen_ < 2) return;
   // Only motions of a driving camera are kept: the store outlasts a stop of any length.
   Vector6d motion = se3Log(frameMotion());

@@ -261,17 +261,20 @@ TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFi
     return result;
   }
   without.without_movable = true;
+  without.reference_inlier_ratio = at_retracked.all;
   return without;
 }
 
 Tracker::MovableAgreement Tracker::movableAgreement(const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame) const {
   const LevelReference& reference = all_.references[0];
   std::vector<int> block_inliers(reference.point_index.size(), -1);
+  std::array<LevelSums, kParallelSlices> slices;
   forEachSlice([&](int slice) {
-    LevelSums sums;
     const auto [begin, end] = sliceRange(reference.point_index.size(), slice);
-    addPhotometric(reference, T_cam_kf, frame.level(0), begin, end, false, &sums, block_inliers.data());
+    addPhotometric(reference, T_cam_kf, frame.level(0), begin, end, false, &slices[static_cast<std::size_t>(slice)], block_inliers.data());
   });
+  LevelSums total;
+  for (const LevelSums& sums : slices) total += sums;
   int inliers[2] = {0, 0}, blocks[2] = {0, 0};  // [movable, other]
   for (std::size_t block = 0; block < block_inliers.size(); ++block) {
     const MapPoint& point = keyframe_->points[static_cast<std::size_t>(reference.point_index[block])];
@@ -281,7 +284,7 @@ Tracker::MovableAgreement Tracker::movableAgreement(const Eigen::Isometry3d& T_c
     ++blocks[kind];
   }
   const auto ratio = [&](int kind) { return blocks[kind] ? static_cast<double>(inliers[kind]) / (kPattern * blocks[kind]) : 0.0; };
-  return {ratio(0), ratio(1)};
+  return {ratio(0), ratio(1), static_cast<double>(total.inliers) / std::max(1, total.residuals)};
 }
 
 TrackingResult Tracker::trackWith(const TrackedPoints& points, const ImagePyramid& frame, const NearestNeighborFieldView* field,
@@ -340,6 +343,7 @@ TrackingResult Tracker::trackWith(const TrackedPoints& points, const ImagePyrami
   const double blocks = result.points;
   result.ok = blocks > 0 && result.points_in_view >= options_.min_points_in_view * blocks &&
               result.photometric_inliers >= options_.min_inlier_ratio * std::max(1, result.photometric_residuals);
+  result.reference_inlier_ratio = result.inlierRatio();
   return result;
 }
 
