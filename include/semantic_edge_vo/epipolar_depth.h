@@ -48,13 +48,6 @@ struct EpipolarTarget {
   Eigen::Isometry3d T_target_host = Eigen::Isometry3d::Identity();
 };
 
-/// searchEpipolar in `target`, bounded by a match in `narrowing` (a shorter baseline: its line is
-/// shorter and holds fewer look-alikes of the point, a repetitive facade's next window, say) instead
-/// of the point's prior; by the prior where `narrowing` is null, finds no match or one less certain
-/// than the prior. The narrowing match is not fused: the target's wider baseline measures the point.
-bool searchEpipolarNarrowed(const MapPoint& point, const PyramidLevel& host, const EpipolarTarget* narrowing,
-                            const EpipolarTarget& target, const EpipolarSearchOptions& options, DepthMeasurement* measurement);
-
 /// Fuses a measurement into the point's inverse-depth estimate (1-D Kalman filter). The first
 /// measurement replaces a propagated prior; one more than 3 sigmas away replaces a single earlier
 /// measurement (either may be the outlier) and is refused (false) by two or more agreeing ones.

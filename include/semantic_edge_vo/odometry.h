@@ -41,10 +41,6 @@ struct OdometryOptions {
   /// car waiting at a light made one every keyframe_max_interval frames).
   double keyframe_min_parallax = 5.0;
   double depth_neighbour_radius = 30.0;  ///< new keyframe points take a prior depth from map points this near, px
-  /// A new keyframe's points are searched first in the frame before it, whose match bounds their
-  /// search in the previous keyframe (fewer look-alikes on a repetitive facade: better depths, but
-  /// no better trajectories where measured; see triangulatePoints).
-  bool narrow_epipolar_search = false;
   int window_size = 7;                 ///< keyframes kept (the map published to users)
 
   std::string validate() const;
@@ -83,9 +79,6 @@ class Odometry {
   /// Poses of frames still waiting for initialisation, as untrusted constant-velocity predictions (end of a sequence).
   std::vector<FramePose> flush();
 
-  /// The class table the frames' class masks refer to (resolves the tracker's movable classes).
-  void setClassNames(const std::vector<std::string>& class_names) { tracker_.setClassNames(class_names); }
-
   OdometryState state() const { return state_; }
   const std::deque<std::shared_ptr<Keyframe>>& keyframes() const { return keyframes_; }
 
@@ -115,29 +108,17 @@ class Odometry {
   Eigen::Isometry3d makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame,
                                  std::shared_ptr<const SharedClassEdgeTest> frame_edges, Eigen::Isometry3d T_world_cam,
                                  FramePose* pose);
-  /// A frame tracked against a keyframe, with its edge test (refineDepths').
-  struct TrackedFrame {
-    std::shared_ptr<const OdometryFrame> frame;
-    std::shared_ptr<const SharedClassEdgeTest> edges;
-    Eigen::Isometry3d T_frame_kf = Eigen::Isometry3d::Identity();
-  };
   /// The keyframe's points from its frame's candidates: prior depths from the previous keyframe's
-  /// measured points, then an epipolar search against the previous keyframe, narrowed by one in
-  /// `nearby` (the frame before the keyframe, tracked against `previous`; none when empty).
-  void triangulatePoints(Keyframe* keyframe, const Keyframe& previous, const TrackedFrame& nearby) const;
-  /// Epipolar search of each point of the host in the target (searchEpipolarNarrowed), fused into
-  /// its depth filter.
-  void measureDepths(const PyramidLevel& host, const EpipolarTarget& target, const EpipolarTarget* narrowing,
-                     std::vector<MapPoint>* points) const;
+  /// measured points, then an epipolar search against the previous keyframe.
+  void triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const;
+  /// Epipolar search of each point of the host in the target, fused into its depth filter.
+  void measureDepths(const PyramidLevel& host, const EpipolarTarget& target, std::vector<MapPoint>* points) const;
   /// Optimises the window at a new keyframe: in line, or started on its own thread.
   void optimizeWindow(int frame_index, FramePose* pose);
   /// Merges the deferred optimisation; the recent poses move with the active keyframe, whose points
   /// are triangulated again from its settled pose (the caller hands it to the tracker).
   /// @return the correction of the active keyframe's pose (identity when it did not move)
   Eigen::Isometry3d mergeWindow(FramePose* pose);
-  /// Keeps a frame tracked against the active keyframe as last_tracked_ (narrow_epipolar_search only).
-  void rememberTracked(std::shared_ptr<const OdometryFrame> frame, std::shared_ptr<const SharedClassEdgeTest> edges,
-                       const Eigen::Isometry3d& T_frame_kf);
   void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);
   /// Follows the active keyframe's corners into a tracked frame (KeyframeMotion).
   void followCorners(const OdometryFrame& frame);
@@ -180,8 +161,6 @@ class Odometry {
   std::vector<WaitingFrame> waiting_;
   std::deque<std::shared_ptr<Keyframe>> keyframes_;
   std::shared_ptr<Keyframe> active_;
-  TrackedFrame last_tracked_;      ///< the newest frame tracked against active_ (empty after a keyframe, and without narrow_epipolar_search)
-  TrackedFrame before_active_;     ///< the frame tracked last before active_ was made, against the keyframe before it
   int next_keyframe_id_ = 0;
   int frames_since_keyframe_ = 0;
   // The last two final poses (constant-velocity prediction) and whether any exists.

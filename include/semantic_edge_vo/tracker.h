@@ -26,17 +26,6 @@ struct TrackerOptions {
   double min_inlier_ratio = 0.5;     ///< lost when fewer photometric residuals are inliers at level 0
   double min_points_in_view = 0.25;  ///< lost when fewer keyframe points project into the frame
   ForwardMotionOptions forward_motion;  ///< prior on the direction of travel (sigma 0: off)
-  /// Classes that can drive (comma-separated names of the class table; empty: no check). A vehicle
-  /// driving alongside at our speed agrees with a pose dragged along with it: when the keyframe's
-  /// edge points of these classes agree with the tracked frame clearly better than its other edge
-  /// points, the frame is tracked again without them (see movable_disagreement). Off by default:
-  /// over 18 synthetic highway runs it did better in 7 and worse in 9, by more than 1 % (README,
-  /// Evaluation).
-  std::string movable_classes;
-  /// "Clearly better": the movable edge points' level-0 photometric inlier ratio exceeds the other
-  /// edge points' by more than this. The pose without them is taken when the other edge points
-  /// agree better with it and the movable ones worse (they move; parked cars agree with both).
-  double movable_disagreement = 0.2;
 
   std::string validate() const;
 };
@@ -53,11 +42,6 @@ struct TrackingResult {
   double photometric_rmse = 0.0;     ///< inliers, gray levels / px
   double edge_rmse = 0.0;            ///< inliers, full-resolution px
   double mean_flow = 0.0;            ///< mean displacement of the keyframe points, full-resolution px
-  bool without_movable = false;      ///< tracked without the movable classes' points (TrackerOptions::movable_classes)
-  /// The photometric inlier ratio of every keyframe point at T_cam_kf (level 0): inlierRatio(), or,
-  /// tracked without the movable classes, the ratio with them. Pass it as the next frame's
-  /// previous_inlier_ratio: that frame is tracked with every point first, and its ratio is compared.
-  double reference_inlier_ratio = 0.0;
 
   /// Photometric inliers over photometric residuals (level 0).
   double inlierRatio() const { return static_cast<double>(photometric_inliers) / std::max(1, photometric_residuals); }
@@ -71,10 +55,6 @@ struct TrackingResult {
 class Tracker {
  public:
   explicit Tracker(const TrackerOptions& options) : options_(options) {}
-
-  /// The class table the keyframe points' class masks refer to (resolves options.movable_classes;
-  /// until set, or with a table without those classes, nothing is movable).
-  void setClassNames(const std::vector<std::string>& class_names);
 
   /// Precomputes what tracking against `keyframe` needs (reference patterns, edge points).
   void setKeyframe(std::shared_ptr<const Keyframe> keyframe);
@@ -97,16 +77,11 @@ class Tracker {
     std::vector<float> pattern_values;            ///< gradient magnitude of the keyframe there
     std::vector<int> point_index;                 ///< keyframe point of each pattern block
   };
-  /// The points tracking aligns: all the keyframe's, or those without the movable classes.
+  /// The points tracking aligns.
   struct TrackedPoints {
     std::vector<LevelReference> references;  ///< per level
     std::vector<ReferenceEdge> edges;        ///< the edge points with depth
     bool empty() const { return references.empty() || references[0].point_index.empty(); }
-  };
-  /// Level-0 photometric inlier ratios at a pose (out-of-view points left out): of the keyframe's
-  /// edge points of the movable classes, of its other edge points, and of every point.
-  struct MovableAgreement {
-    double movable = 0.0, other = 0.0, all = 0.0;
   };
   /// Sums over a slice of the residuals of a level: cost, counts and normal equations.
   struct LevelSums {
@@ -120,10 +95,9 @@ class Tracker {
   double evaluate(const TrackedPoints& points, int level, const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame,
                   const NearestNeighborFieldView* field, const ForwardMotionPrior& prior, Normal* normal,
                   TrackingResult* result) const;
-  /// Photometric residuals of reference blocks [begin, end). `block_inliers`, when given, gets each
-  /// block's count of inlier residuals (-1: out of view), indexed by block.
+  /// Photometric residuals of reference blocks [begin, end).
   void addPhotometric(const LevelReference& reference, const Eigen::Isometry3d& T_cam_kf, const PyramidLevel& target,
-                      std::size_t begin, std::size_t end, bool with_normal, LevelSums* sums, int* block_inliers = nullptr) const;
+                      std::size_t begin, std::size_t end, bool with_normal, LevelSums* sums) const;
   /// Edge residuals of edges[begin, end).
   void addEdges(const std::vector<ReferenceEdge>& edges, int level, const Eigen::Isometry3d& T_cam_kf,
                 const NearestNeighborFieldView& field, std::size_t begin, std::size_t end, bool with_normal,
@@ -131,22 +105,11 @@ class Tracker {
   /// Levenberg-Marquardt at one level from `T`; returns the final cost.
   double optimizeLevel(const TrackedPoints& points, int level, const ImagePyramid& frame, const NearestNeighborFieldView* field,
                        const ForwardMotionPrior& prior, Eigen::Isometry3d* T, int* iterations) const;
-
-  /// track() on one point set.
-  TrackingResult trackWith(const TrackedPoints& points, const ImagePyramid& frame, const NearestNeighborFieldView* field,
-                           const std::vector<Eigen::Isometry3d>& guesses, double previous_inlier_ratio) const;
-  MovableAgreement movableAgreement(const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame) const;
-  /// Of a movable class, and not an edge of unknown class (those carry every class of the table).
-  bool isMovable(std::uint32_t class_mask) const {
-    return (class_mask & movable_mask_) != 0 && class_mask != unknown_class_mask_;
-  }
-  TrackedPoints trackedPoints(bool with_movable) const;
+  TrackedPoints trackedPoints() const;
 
   TrackerOptions options_;
-  std::uint32_t movable_mask_ = 0, unknown_class_mask_ = 0;
   std::shared_ptr<const Keyframe> keyframe_;
   TrackedPoints all_;
-  TrackedPoints unmoving_;  ///< without the movable classes' points; empty when the keyframe has none
   std::vector<EdgeRegistration> edge_residuals_; ///< per level
 };
 

@@ -136,20 +136,6 @@ bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const Pyram
   return measurement->inverse_depth > 0.0;
 }
 
-bool searchEpipolarNarrowed(const MapPoint& point, const PyramidLevel& host, const EpipolarTarget* narrowing,
-                            const EpipolarTarget& target, const EpipolarSearchOptions& options, DepthMeasurement* measurement) {
-  MapPoint bounded = point;
-  DepthMeasurement narrowed;
-  // Only a match tighter than the prior narrows: on a line of a few pixels (little parallax in the
-  // frame before) the match is hardly unique and its sigma may exceed the prior's.
-  if (narrowing && searchEpipolar(point, host, *narrowing->level, narrowing->edges, narrowing->T_target_host, options, &narrowed) &&
-      narrowed.variance < point.inverse_depth_variance) {
-    bounded.inverse_depth = narrowed.inverse_depth;
-    bounded.inverse_depth_variance = narrowed.variance;
-  }
-  return searchEpipolar(bounded, host, *target.level, target.edges, target.T_target_host, options, measurement);
-}
-
 bool fuseDepth(const DepthMeasurement& measurement, MapPoint* point) {
   if (point->observations == 0) {
     point->inverse_depth = measurement.inverse_depth;

@@ -124,7 +124,6 @@ void Odometry::restart() {
   if (state_ != OdometryState::kTracking) return;
   state_ = OdometryState::kInitializing;
   recovering_ = true;
-  last_tracked_ = before_active_ = TrackedFrame();  // of the map given up
   // The speed it drove at, not the last frame's: traffic that made the loss dragged the last frames
   // towards standing (a truck alongside at our speed), and the new map would take that scale.
   const double driving_speed = drivingMotion().head<3>().norm();
@@ -248,7 +247,7 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
     pose.tracking_ms = waiting_[j].ms + elapsedMs(frame_start);
     const auto mapping_start = std::chrono::steady_clock::now();
     if (result.ok) {
-      rememberTracked(waiting_[j].frame, refineDepths(frame_j, result.T_cam_kf), result.T_cam_kf);
+      refineDepths(frame_j, result.T_cam_kf);
       followCorners(frame_j);
     }
     pose.mapping_ms = elapsedMs(mapping_start);
@@ -289,7 +288,7 @@ bool Odometry::relocalize(const std::shared_ptr<const OdometryFrame>& frame, std
   // loss, and it explains the next frame just above min_inlier_ratio) is initialised anew.
   if (!result.ok || recent_inlier_ratios_.empty()) return false;
   const double usual_ratio = median({recent_inlier_ratios_.begin(), recent_inlier_ratios_.end()});
-  if (result.reference_inlier_ratio < options_.tracker.accept_inlier_ratio * usual_ratio) return false;
+  if (result.inlierRatio() < options_.tracker.accept_inlier_ratio * usual_ratio) return false;
   // Back on the map it had: the frames since the loss stay untrusted predictions.
   *poses = flush();
   for (const FramePose& pose : *poses) remember(pose);
@@ -314,7 +313,7 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   pose.keyframe_id = active_->id;
   pose.tracking = result;
   pose.tracking_ms = tracking_ms;
-  last_inlier_ratio_ = pose.tracking.ok ? pose.tracking.reference_inlier_ratio : 1.0;
+  last_inlier_ratio_ = pose.tracking.ok ? pose.tracking.inlierRatio() : 1.0;
   if (!pose.tracking.ok) {
     // Lost: report the prediction, untrusted; from the next frame on, try the map it had until a
     // new initialisation succeeds.
@@ -339,8 +338,6 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   if (pose.tracking.mean_flow > options_.keyframe_flow || few_in_view || interval) {
     pose.T_world_cam = makeKeyframe(frame, std::move(frame_edges), pose.T_world_cam, &pose);
     pose.keyframe = true;
-  } else {
-    rememberTracked(frame, std::move(frame_edges), pose.tracking.T_cam_kf);
   }
   pose.mapping_ms = elapsedMs(mapping_start);
   remember(pose);
@@ -363,7 +360,7 @@ std::shared_ptr<const SharedClassEdgeTest> Odometry::refineDepths(const Odometry
   const PyramidLevel& host = active_->frame->pyramid->level(0);
   const PyramidLevel& target = frame.pyramid->level(0);
   std::shared_ptr<const SharedClassEdgeTest> edges = edgeTestOf(frame, options_.epipolar.edge_radius);
-  measureDepths(host, {&target, edges.get(), T_frame_kf}, nullptr, &active_->points);
+  measureDepths(host, {&target, edges.get(), T_frame_kf}, &active_->points);
   tracker_.setKeyframe(active_);
   return edges;
 }
@@ -387,14 +384,13 @@ Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFra
   // triangulated from it: points triangulated from the tracked pose agree with its error and would
   // pin it there (a yaw error leaves a left-right depth gradient that makes the next yaw error).
   if (options_.optimize_window) optimizeWindow(frame->index, pose);
-  before_active_ = last_tracked_;  // setActiveKeyframe forgets last_tracked_
-  triangulatePoints(keyframe.get(), *active_, before_active_);
+  triangulatePoints(keyframe.get(), *active_);
   setActiveKeyframe(keyframe);
   frames_since_keyframe_ = 0;
   return keyframe->T_world_cam;
 }
 
-void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous, const TrackedFrame& nearby) const {
+void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const {
   keyframe->points = keyframe->frame->candidates;
   // Prior depths: the previous keyframe's measured points, seen from the new keyframe.
   const Eigen::Isometry3d T_new_old = keyframe->T_world_cam.inverse() * previous.T_world_cam;
@@ -409,25 +405,16 @@ void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous, c
   const PyramidLevel& host = keyframe->frame->pyramid->level(0);
   const std::shared_ptr<const SharedClassEdgeTest> previous_edges =
       previous.edge_test ? previous.edge_test : edgeTestOf(*previous.frame, options_.epipolar.edge_radius);
-  const EpipolarTarget widest{&previous.frame->pyramid->level(0), previous_edges.get(), T_new_old.inverse()};
-  // The propagated priors are wide (half their inverse depth), and on a repetitive facade (a grid
-  // of windows) the next window along the previous keyframe's long epipolar line can match better
-  // than the right one (synthetic city: a third of a keyframe's edges at twice their inverse
-  // depth). The frame before the keyframe sees the points on a line a few times shorter, with
-  // fewer look-alikes on it: its match can narrow the search on the long line (an option: the
-  // depths get better, the trajectories did not; README, narrow_epipolar_search).
-  EpipolarTarget narrowing;
-  if (nearby.frame) narrowing = {&nearby.frame->pyramid->level(0), nearby.edges.get(), nearby.T_frame_kf * T_new_old.inverse()};
-  measureDepths(host, widest, nearby.frame ? &narrowing : nullptr, &keyframe->points);
+  measureDepths(host, {&previous.frame->pyramid->level(0), previous_edges.get(), T_new_old.inverse()}, &keyframe->points);
 }
 
-void Odometry::measureDepths(const PyramidLevel& host, const EpipolarTarget& target, const EpipolarTarget* narrowing,
-                             std::vector<MapPoint>* points) const {
+void Odometry::measureDepths(const PyramidLevel& host, const EpipolarTarget& target, std::vector<MapPoint>* points) const {
   // Each point is searched and filtered on its own: both cores, same result as in order.
   forEachIndex(points->size(), [&](std::size_t i) {
     DepthMeasurement measurement;
     MapPoint& point = (*points)[i];
-    if (searchEpipolarNarrowed(point, host, narrowing, target, options_.epipolar, &measurement)) fuseDepth(measurement, &point);
+    if (searchEpipolar(point, host, *target.level, target.edges, target.T_target_host, options_.epipolar, &measurement))
+      fuseDepth(measurement, &point);
   });
 }
 
@@ -453,18 +440,12 @@ Eigen::Isometry3d Odometry::mergeWindow(FramePose* pose) {
   T_world_before_ = orthonormalized(correction * T_world_before_);
   // The optimisation settled the active keyframe's pose without its points (see makeKeyframe), which
   // were triangulated from the tracked pose meanwhile: triangulate them again from the settled one.
-  if (keyframes_.size() >= 2) triangulatePoints(active_.get(), *keyframes_[keyframes_.size() - 2], before_active_);
+  if (keyframes_.size() >= 2) triangulatePoints(active_.get(), *keyframes_[keyframes_.size() - 2]);
   return correction;
-}
-
-void Odometry::rememberTracked(std::shared_ptr<const OdometryFrame> frame, std::shared_ptr<const SharedClassEdgeTest> edges,
-                               const Eigen::Isometry3d& T_frame_kf) {
-  if (options_.narrow_epipolar_search) last_tracked_ = {std::move(frame), std::move(edges), T_frame_kf};
 }
 
 void Odometry::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {
   active_ = std::move(keyframe);
-  last_tracked_ = TrackedFrame();
   tracker_.setKeyframe(active_);
   if (keyframe_motion_.enabled()) keyframe_motion_.start(active_->id, active_->frame->index, gray8(*active_->frame));
 }
@@ -483,7 +464,7 @@ void Odometry::remember(const FramePose& pose) {
   const int indices = last_stamp_.index - before_stamp_.index;
   const double seconds = last_stamp_.time - before_stamp_.time;
   if (poses_seen_ >= 2 && indices > 0 && seconds > 0.0) keepLast(seconds / indices, kFrameIntervals, &frame_intervals_);
-  if (pose.trusted && pose.tracking.ok) keepLast(pose.tracking.reference_inlier_ratio, kRecentInlierRatios, &recent_inlier_ratios_);
+  if (pose.trusted && pose.tracking.ok) keepLast(pose.tracking.inlierRatio(), kRecentInlierRatios, &recent_inlier_ratios_);
   if (!pose.trusted || poses_seen_ < 2) return;
   // Only motions of a driving camera are kept: the store outlasts a stop of any length.
   Vector6d motion = se3Log(frameMotion());

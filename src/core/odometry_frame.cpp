@@ -34,7 +34,7 @@ std::string FrameBuilderOptions::validate() const {
 
 FrameBuilder::FrameBuilder(const FrameBuilderOptions& options, const PinholeCamera& camera,
                            std::vector<std::string> class_names)
-    : options_(options), camera_(camera), class_names_(std::move(class_names)), sampler_(options.sampler, class_names_) {
+    : options_(options), camera_(camera), class_names_(std::move(class_names)), sampler_(options.sampler) {
   options_.field.pyramid_levels = std::max(options_.field.pyramid_levels, options_.pyramid_levels);
 }
 
@@ -43,8 +43,7 @@ std::shared_ptr<const OdometryFrame> FrameBuilder::build(int index, double time,
   EdgeSet edges;
   *error = SemanticEdgeExtractor(options_.intake).extract(gray, classes, cv::Mat(), &edges);
   if (*error) return nullptr;
-  const bool semantic = options_.intake.mode != IntakeMode::kCanny;
-  const PointSample sample = sampler_.sample(gray, edges.view(), semantic ? &classes : nullptr);
+  const PointSample sample = sampler_.sample(gray, edges.view());
 
   auto frame = std::make_shared<OdometryFrame>();
   frame->index = index;

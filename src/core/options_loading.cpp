@@ -16,7 +16,6 @@ std::string loadPointSamplerOptions(ParameterLoader* loader, PointSamplerOptions
   loader->load("sampler/support_block_size", &options->support_block_size, "px");
   loader->load("sampler/support_threshold_offset", &options->support_threshold_offset, "gray levels/px");
   loader->load("sampler/support_min_distance", &options->support_min_distance, "px");
-  loader->load("sampler/movable_classes", &options->movable_classes, "(class names, comma-separated)");
   return options->validate();
 }
 
@@ -45,8 +44,6 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
     return "tracker/class_association must be nearest, each or split (got '" + association + "')";
   loader->load("tracker/accept_inlier_ratio", &tracker.accept_inlier_ratio, "");
   loader->load("tracker/min_inlier_ratio", &tracker.min_inlier_ratio, "");
-  loader->load("tracker/movable_classes", &tracker.movable_classes, "(class names, comma-separated; empty: no check)");
-  loader->load("tracker/movable_disagreement", &tracker.movable_disagreement, "(inlier ratio difference)");
   loader->load("tracker/forward_motion/sigma", &tracker.forward_motion.sigma_deg, "deg (0: off)");
   loader->load("tracker/forward_motion/pitch", &tracker.forward_motion.pitch_deg, "deg (+: down)");
   loader->load("tracker/forward_motion/yaw", &tracker.forward_motion.yaw_deg, "deg (+: right)");
@@ -58,7 +55,6 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("keyframe_flow", &options->keyframe_flow, "px");
   loader->load("keyframe_max_interval", &options->keyframe_max_interval, "frames");
   loader->load("keyframe_min_parallax", &options->keyframe_min_parallax, "px");
-  loader->load("narrow_epipolar_search", &options->narrow_epipolar_search);
   loader->load("window_size", &options->window_size, "keyframes");
   loader->load("optimize_window", &options->optimize_window);
   loader->load("window_delay", &options->window_delay, "frames (0: in line)");

@@ -122,41 +122,20 @@ std::string PointSamplerOptions::validate() const {
   return error.str();
 }
 
-std::uint32_t classMaskOf(const std::vector<std::string>& table_names, const std::string& names) {
-  std::uint32_t mask = 0;
-  std::stringstream list(names);
-  std::string name;
-  while (std::getline(list, name, ',')) {
-    name.erase(0, name.find_first_not_of(' '));
-    name.erase(name.find_last_not_of(' ') + 1);
-    for (std::size_t i = 0; i < table_names.size() && i < 32; ++i)
-      if (table_names[i] == name) mask |= 1u << i;
-  }
-  return mask;
-}
-
-PointSample PointSampler::sample(const cv::Mat& gray, const EdgeSetView& edges, const ClassEvidence* classes) const {
+PointSample PointSampler::sample(const cv::Mat& gray, const EdgeSetView& edges) const {
   PointSample result;
-  result.edge_indices = sampleEdges(edges, gray.cols, gray.rows, classes ? movable_mask_ : 0u);
+  result.edge_indices = sampleEdges(edges, gray.cols, gray.rows);
   const int shortfall = options_.max_edge_points - static_cast<int>(result.edge_indices.size());
-  sampleSupport(gray, edges, options_.min_support_points + std::max(0, shortfall), classes, &result);
+  sampleSupport(gray, edges, options_.min_support_points + std::max(0, shortfall), &result);
   return result;
 }
 
-std::vector<std::uint32_t> PointSampler::sampleEdges(const EdgeSetView& edges, int width, int height,
-                                                     std::uint32_t excluded_classes) const {
-  // The eligible edges: all, or those without an excluded class (the budget goes to the others).
-  std::vector<std::uint32_t> eligible;
-  if (excluded_classes)
-    for (std::uint32_t i = 0; i < edges.size(); ++i)
-      if (!(edges.class_mask[i] & excluded_classes)) eligible.push_back(i);
-  const bool all_eligible = !excluded_classes;
-  const std::size_t n = all_eligible ? edges.size() : eligible.size();
-  const auto index = [&](std::size_t k) { return all_eligible ? static_cast<std::uint32_t>(k) : eligible[k]; };
+std::vector<std::uint32_t> PointSampler::sampleEdges(const EdgeSetView& edges, int width, int height) const {
+  const std::size_t n = edges.size();
   const auto wanted = static_cast<std::size_t>(options_.max_edge_points);
   if (n <= wanted) {
     std::vector<std::uint32_t> all(n);
-    for (std::size_t k = 0; k < n; ++k) all[k] = index(k);
+    std::iota(all.begin(), all.end(), 0u);
     return all;
   }
 
@@ -166,15 +145,14 @@ std::vector<std::uint32_t> PointSampler::sampleEdges(const EdgeSetView& edges, i
   const int cols = (width + cell - 1) / cell, rows = (height + cell - 1) / cell;
   std::vector<std::uint32_t> cell_start(static_cast<std::size_t>(cols * rows) + 1, 0u), cell_of(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const std::uint32_t i = index(k);
-    const int cx = std::clamp(static_cast<int>(edges.u[i]) / cell, 0, cols - 1);
-    const int cy = std::clamp(static_cast<int>(edges.v[i]) / cell, 0, rows - 1);
+    const int cx = std::clamp(static_cast<int>(edges.u[k]) / cell, 0, cols - 1);
+    const int cy = std::clamp(static_cast<int>(edges.v[k]) / cell, 0, rows - 1);
     cell_of[k] = static_cast<std::uint32_t>(cy * cols + cx);
     ++cell_start[cell_of[k] + 1];
   }
   for (std::size_t c = 1; c < cell_start.size(); ++c) cell_start[c] += cell_start[c - 1];
   std::vector<std::uint32_t> by_cell(n), fill(cell_start.begin(), cell_start.end() - 1);
-  for (std::size_t k = 0; k < n; ++k) by_cell[fill[cell_of[k]]++] = index(k);  // edge indices
+  for (std::size_t k = 0; k < n; ++k) by_cell[fill[cell_of[k]]++] = static_cast<std::uint32_t>(k);  // edge indices
 
   const auto stronger = [&](std::uint32_t a, std::uint32_t b) {
     return edges.strength[a] != edges.strength[b] ? edges.strength[a] > edges.strength[b] : a < b;
@@ -213,7 +191,7 @@ std::vector<std::uint32_t> PointSampler::sampleEdges(const EdgeSetView& edges, i
 }
 
 void PointSampler::sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, int count,
-                                 const ClassEvidence* classes, PointSample* sample) const {
+                                 PointSample* sample) const {
   if (count <= 0) return;
   // Pixels near any edge are the edges' business; supportive pixels stay clear of them.
   cv::Mat near_edge(gray.size(), CV_8U, cv::Scalar(0));
@@ -268,14 +246,6 @@ void PointSampler::sampleSupport(const cv::Mat& gray, const EdgeSetView& edges, 
         }
       }
     }
-  }
-  if (classes && movable_mask_) {
-    const auto on_movable = [&](const Candidate& c) {
-      float best = 0.0f;
-      const cv::Point pixel(c.x, c.y);
-      return (classes->classMaskAcross({pixel, pixel, pixel}, 1.0f, &best) & movable_mask_) != 0;
-    };
-    candidates.erase(std::remove_if(candidates.begin(), candidates.end(), on_movable), candidates.end());
   }
   std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
     return a.edges_scarce != b.edges_scarce ? a.edges_scarce : a.margin > b.margin;

@@ -7,7 +7,6 @@
 #include <limits>
 #include <sstream>
 
-#include "semantic_edge_vo/class_table.h"
 #include "semantic_edge_vo/nearest_neighbor_field.h"
 #include "semantic_edge_vo/parallel_slices.h"
 #include "semantic_edge_vo/point_sampler.h"
@@ -17,11 +16,6 @@ namespace {
 
 /// Coarse levels use every n-th point: they only need to find the basin.
 int pointStride(int level) { return level >= 2 ? 1 << (level - 1) : 1; }
-
-/// Movable points that truly move agree worse with the pose tracked without them (their level-0
-/// inlier ratio drops: 0.004-0.66 over a truck's drag on the synthetic highway); parked ones agree
-/// as well as before (village: 0.000, once 0.06 of 14). Below this drop the pose with them stays.
-constexpr double kMovingDisagreement = 0.02;
 
 }  // namespace
 
@@ -37,24 +31,12 @@ std::string TrackerOptions::validate() const {
     error << "min_inlier_ratio and min_points_in_view must be in [0, 1]";
   else if (!(forward_motion.sigma_deg >= 0 && std::abs(forward_motion.pitch_deg) < 90 && std::abs(forward_motion.yaw_deg) < 90))
     error << "forward_motion: sigma must be >= 0 deg (0: off), pitch and yaw within +-90 deg";
-  else if (!(movable_disagreement >= 0 && movable_disagreement <= 1))
-    error << "movable_disagreement must be in [0, 1] (got " << movable_disagreement << ")";
   return error.str();
-}
-
-void Tracker::setClassNames(const std::vector<std::string>& class_names) {
-  movable_mask_ = classMaskOf(class_names, options_.movable_classes);
-  unknown_class_mask_ = everyClassMask(class_names.size());
-  if (keyframe_) setKeyframe(keyframe_);
 }
 
 void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
   keyframe_ = std::move(keyframe);
-  all_ = trackedPoints(true);
-  const bool has_movable = movable_mask_ != 0 && std::any_of(keyframe_->points.begin(), keyframe_->points.end(), [&](const MapPoint& p) {
-                             return p.hasDepth() && isMovable(p.class_mask);
-                           });
-  unmoving_ = has_movable ? trackedPoints(false) : TrackedPoints();
+  all_ = trackedPoints();
   const int levels = static_cast<int>(all_.references.size());
   const PinholeCamera& camera = keyframe_->frame->pyramid->level(0).camera;
   edge_residuals_.clear();
@@ -67,10 +49,10 @@ void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
   }
 }
 
-Tracker::TrackedPoints Tracker::trackedPoints(bool with_movable) const {
+Tracker::TrackedPoints Tracker::trackedPoints() const {
   const ImagePyramid& pyramid = *keyframe_->frame->pyramid;
   const int levels = std::min(options_.levels, pyramid.levels());
-  const auto tracked = [&](const MapPoint& point) { return point.hasDepth() && (with_movable || !isMovable(point.class_mask)); };
+  const auto tracked = [](const MapPoint& point) { return point.hasDepth(); };
   TrackedPoints points;
   points.references.assign(static_cast<std::size_t>(levels), LevelReference());
   for (int l = 0; l < levels; ++l) {
@@ -133,7 +115,7 @@ double Tracker::evaluate(const TrackedPoints& points, int level, const Eigen::Is
 }
 
 void Tracker::addPhotometric(const LevelReference& reference, const Eigen::Isometry3d& T_cam_kf, const PyramidLevel& target,
-                             std::size_t begin, std::size_t end, bool with_normal, LevelSums* sums, int* block_inliers) const {
+                             std::size_t begin, std::size_t end, bool with_normal, LevelSums* sums) const {
   const Eigen::Matrix3f R = T_cam_kf.linear().cast<float>();
   const Eigen::Vector3f t = T_cam_kf.translation().cast<float>();
   const float fx = static_cast<float>(target.camera.fx), fy = static_cast<float>(target.camera.fy);
@@ -153,11 +135,9 @@ void Tracker::addPhotometric(const LevelReference& reference, const Eigen::Isome
     }
     if (!visible) {
       sums->cost += out_of_view_cost;
-      if (block_inliers) block_inliers[block] = -1;
       continue;
     }
     ++sums->in_view;
-    const int inliers_before = sums->inliers;
     for (int j = 0; j < kPattern; ++j) {
       const float x = pixel[j].x(), y = pixel[j].y();
       const double r = sampleBilinear(target.gradient, x, y) - reference.pattern_values[block * kPattern + j];
@@ -178,7 +158,6 @@ void Tracker::addPhotometric(const LevelReference& reference, const Eigen::Isome
       sums->normal.H.noalias() += w * J * J.transpose();
       sums->normal.b.noalias() += w * r * J;
     }
-    if (block_inliers) block_inliers[block] = sums->inliers - inliers_before;
   }
 }
 
@@ -244,51 +223,7 @@ double Tracker::optimizeLevel(const TrackedPoints& points, int level, const Imag
 TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFieldView* field,
                               const std::vector<Eigen::Isometry3d>& guesses, double previous_inlier_ratio) const {
   if (!keyframe_ || all_.references.empty()) return TrackingResult();
-  TrackingResult result = trackWith(all_, frame, field, guesses, previous_inlier_ratio);
-  if (unmoving_.empty()) return result;
-  // Traffic alongside drags the pose with it: then its points agree with the frame clearly better
-  // than the static structure's. Tracked without them, the static structure must agree better and
-  // they worse (parked cars, close by and well textured, agree better too, but with both poses).
-  const MovableAgreement at_tracked = movableAgreement(result.T_cam_kf, frame);
-  if (at_tracked.movable - at_tracked.other <= options_.movable_disagreement) return result;
-  TrackingResult without = trackWith(unmoving_, frame, field, guesses, previous_inlier_ratio);
-  without.iterations += result.iterations;
-  const MovableAgreement at_retracked = movableAgreement(without.T_cam_kf, frame);
-  // A trusted pose is not traded for one that is not.
-  if ((result.ok && !without.ok) || at_retracked.other <= at_tracked.other ||
-      at_retracked.movable > at_tracked.movable - kMovingDisagreement) {
-    result.iterations = without.iterations;
-    return result;
-  }
-  without.without_movable = true;
-  without.reference_inlier_ratio = at_retracked.all;
-  return without;
-}
-
-Tracker::MovableAgreement Tracker::movableAgreement(const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame) const {
-  const LevelReference& reference = all_.references[0];
-  std::vector<int> block_inliers(reference.point_index.size(), -1);
-  std::array<LevelSums, kParallelSlices> slices;
-  forEachSlice([&](int slice) {
-    const auto [begin, end] = sliceRange(reference.point_index.size(), slice);
-    addPhotometric(reference, T_cam_kf, frame.level(0), begin, end, false, &slices[static_cast<std::size_t>(slice)], block_inliers.data());
-  });
-  LevelSums total;
-  for (const LevelSums& sums : slices) total += sums;
-  int inliers[2] = {0, 0}, blocks[2] = {0, 0};  // [movable, other]
-  for (std::size_t block = 0; block < block_inliers.size(); ++block) {
-    const MapPoint& point = keyframe_->points[static_cast<std::size_t>(reference.point_index[block])];
-    if (!point.isEdge() || block_inliers[block] < 0) continue;  // supportive points carry no class
-    const int kind = isMovable(point.class_mask) ? 0 : 1;
-    inliers[kind] += block_inliers[block];
-    ++blocks[kind];
-  }
-  const auto ratio = [&](int kind) { return blocks[kind] ? static_cast<double>(inliers[kind]) / (kPattern * blocks[kind]) : 0.0; };
-  return {ratio(0), ratio(1), static_cast<double>(total.inliers) / std::max(1, total.residuals)};
-}
-
-TrackingResult Tracker::trackWith(const TrackedPoints& points, const ImagePyramid& frame, const NearestNeighborFieldView* field,
-                                  const std::vector<Eigen::Isometry3d>& guesses, double previous_inlier_ratio) const {
+  const TrackedPoints& points = all_;
   const int levels = std::min({static_cast<int>(points.references.size()), frame.levels(),
                                field ? static_cast<int>(field->levels.size()) : 99});
   // The first guess (constant velocity) is taken when it tracks well. Otherwise the other guesses
@@ -343,7 +278,6 @@ TrackingResult Tracker::trackWith(const TrackedPoints& points, const ImagePyrami
   const double blocks = result.points;
   result.ok = blocks > 0 && result.points_in_view >= options_.min_points_in_view * blocks &&
               result.photometric_inliers >= options_.min_inlier_ratio * std::max(1, result.photometric_residuals);
-  result.reference_inlier_ratio = result.inlierRatio();
   return result;
 }
 

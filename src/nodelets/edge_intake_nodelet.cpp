@@ -61,7 +61,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     }
     PointSamplerOptions sampler_options;
     if (error.empty()) error = loadPointSamplerOptions(&loader, &sampler_options);
-    sampler_ = PointSampler(sampler_options, classes_.names());
+    sampler_ = PointSampler(sampler_options);
     NODELET_INFO_STREAM("parameters:" << loader.summary() << "\n  classes = " << classes_.size());
     if (error.empty()) error = parameters.error();
     if (error.empty() && queue_size < 1) error = "queue_size must be >= 1";
@@ -262,9 +262,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
       edges = extractor.cannyEdges(gray, everyClassMask(static_cast<std::size_t>(classes_.size())));
       frame->intake_mode = toString(IntakeMode::kCanny);
     }
-    // Canny edges (the mode, or the fallback) carry every class: nothing to leave out.
-    const bool semantic = input.complete && options_.mode != IntakeMode::kCanny;
-    PointSample sample = sampler_.sample(gray, edges.view(), semantic ? &evidence : nullptr);
+    PointSample sample = sampler_.sample(gray, edges.view());
     frame->sampled_edges = std::move(sample.edge_indices);
     frame->support_u = std::move(sample.support_u);
     frame->support_v = std::move(sample.support_v);

@@ -115,7 +115,6 @@ class TrackingNodelet : public nodelet::Nodelet {
     }
     if (restart_requested_.exchange(false)) odometry_->restart();
     stamps_[frame_count_] = frame->header;
-    if (frame_count_ == 0 || frame->class_names != class_names_) odometry_->setClassNames(frame->class_names);
     class_names_ = frame->class_names;
     const auto odometry_frame =
         odometryFrameFrom(frame, use_edges_ ? field : NearestNeighborFieldConstPtr(), frame_count_++, options_.tracker.levels);
@@ -197,7 +196,6 @@ class TrackingNodelet : public nodelet::Nodelet {
       status->photometric_rmse = static_cast<float>(pose->tracking.photometric_rmse);
       status->edge_rmse = static_cast<float>(pose->tracking.edge_rmse);
       status->iterations = static_cast<std::uint32_t>(pose->tracking.iterations);
-      status->without_movable = pose->tracking.without_movable;
       status->time_ms = static_cast<float>(pose->tracking_ms + pose->mapping_ms);
     } else {
       status->state = TrackingStatus::INITIALIZING;

@@ -189,7 +189,7 @@ int main(int argc, char** argv) {
       {IntakeMode::kSemanticEdges, "8UC19 edge probabilities", {ClassEvidenceForm::kProbabilities, edge_probabilities8, classes}},
       {IntakeMode::kSemanticEdges, "8UC4 bitmask+strength", {ClassEvidenceForm::kBitmask, bitmask, classes}},
   };
-  const PointSampler sampler(PointSamplerOptions(), ClassTable::cityscapes().names());
+  const PointSampler sampler{PointSamplerOptions()};
   for (const Row& row : rows) {
     SemanticEdgeOptions options;
     options.mode = row.mode;
@@ -203,8 +203,7 @@ int main(int argc, char** argv) {
       const double start = threadCpuMs();
       if (ExtractionError e = extractor.extract(gray, row.evidence, cv::Mat(), &edges)) error = e.reason + ": " + e.detail;
       const double extracted = threadCpuMs();
-      // As the intake nodelet samples: movable classes left out whenever there is class evidence.
-      sample = sampler.sample(gray, edges.view(), row.mode == IntakeMode::kCanny ? nullptr : &row.evidence);
+      sample = sampler.sample(gray, edges.view());
       extract_ms.push_back(extracted - start);
       sample_ms.push_back(threadCpuMs() - extracted);
     }

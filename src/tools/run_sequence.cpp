@@ -139,7 +139,6 @@ int main(int argc, char** argv) {
 
   const FrameBuilder builder(frame_options, input.camera(), options.classes.names());
   Odometry odometry(options.odometry, input.camera());
-  odometry.setClassNames(builder.classNames());
   std::vector<FramePose> poses;
   std::vector<double> intake_ms(static_cast<std::size_t>(frames), 0.0), segmenter_ms(static_cast<std::size_t>(frames), 0.0);
   // Synthetic sequences carry their true depths: check every keyframe's point depths against them.
@@ -185,8 +184,8 @@ int main(int argc, char** argv) {
 
   Trajectory trajectory;
   std::ostringstream timing;
-  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe guess inlier_ratio without_movable\n";
-  int trusted = 0, keyframes = 0, lost = 0, without_movable = 0;
+  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe guess inlier_ratio\n";
+  int trusted = 0, keyframes = 0, lost = 0;
   std::vector<double> totals;
   for (const FramePose& pose : poses) {
     trajectory.poses.push_back(pose.T_world_cam);
@@ -196,11 +195,10 @@ int main(int argc, char** argv) {
     totals.push_back(total);
     timing << pose.index << ' ' << segmenter_ms[i] << ' ' << intake_ms[i] << ' ' << pose.tracking_ms << ' ' << pose.mapping_ms
            << ' ' << total << ' ' << pose.window_ms << ' ' << pose.tracking.iterations << ' ' << pose.trusted << ' ' << toString(pose.state) << ' ' << pose.keyframe
-           << ' ' << pose.tracking.guess << ' ' << pose.tracking.inlierRatio() << ' ' << pose.tracking.without_movable << '\n';
+           << ' ' << pose.tracking.guess << ' ' << pose.tracking.inlierRatio() << '\n';
     trusted += pose.trusted;
     keyframes += pose.keyframe;
     lost += pose.state == OdometryState::kLost;
-    without_movable += pose.trusted && pose.tracking.without_movable;
   }
   for (const std::string& written :
        {writeKittiPoses(args.output + "/poses_kitti.txt", trajectory), writeTumTrajectory(args.output + "/poses_tum.txt", trajectory),
@@ -218,10 +216,10 @@ int main(int argc, char** argv) {
       if (!ran_only || pose.*ms > 0.0) values.push_back(pose.*ms);
     return values.empty() ? 0.0 : median(values);
   };
-  std::printf("run_sequence: %d frames, %d with a trusted pose (%d tracked without the movable classes), %d lost, "
+  std::printf("run_sequence: %d frames, %d with a trusted pose, %d lost, "
               "%d keyframes; median per frame %.1f ms (intake %.1f, tracking %.1f, mapping %.1f); windowed optimisation "
               "%.1f ms each, %s\n",
-              frames, trusted, without_movable, lost, keyframes, median(totals), median(intake_ms), stage(&FramePose::tracking_ms, false),
+              frames, trusted, lost, keyframes, median(totals), median(intake_ms), stage(&FramePose::tracking_ms, false),
               stage(&FramePose::mapping_ms, false), stage(&FramePose::window_ms, true),
               options.odometry.window_delay > 0 ? "on its own thread (not in the total)" : "in line (in mapping)");
   std::printf("run_sequence: throughput %.1f frames/s (wall time of intake + odometry over all frames, %.1f s; "

@@ -108,34 +108,5 @@ TEST(PointSampler, SpreadsEdgesAndAddsSupportWhereEdgesAreScarce) {
   EXPECT_GT(more.support_u.size(), sample.support_u.size());
 }
 
-TEST(PointSampler, LeavesOutMovableClasses) {
-  const cv::Mat gray = texturedPattern();
-  EdgeSet edges = CannyEdgeDetector(CannyOptions()).detect(gray);
-  // Class labels: a car on the left half, a building on the right; edges take their pixel's class.
-  const ClassTable table = ClassTable::cityscapes();
-  const int car = table.indexOf("car"), building = table.indexOf("building");
-  cv::Mat labels(gray.size(), CV_8UC1, cv::Scalar(building));
-  labels.colRange(0, 320).setTo(car);
-  for (std::size_t i = 0; i < edges.size(); ++i) edges.class_mask[i] = 1u << (edges.u[i] < 320 ? car : building);
-  const ClassEvidence evidence{ClassEvidenceForm::kLabels, labels, table.size()};
-  PointSamplerOptions options;
-  options.max_edge_points = 500;
-  options.min_support_points = 200;
-  options.movable_classes = "car,truck";  // nothing is movable by default
-  EXPECT_EQ(classMaskOf(table.names(), " car, bus ,no_such_class"), (1u << car) | (1u << table.indexOf("bus")));
-
-  const PointSampler sampler(options, table.names());
-  const PointSample all = sampler.sample(gray, edges.view());
-  const PointSample static_only = sampler.sample(gray, edges.view(), &evidence);
-  const auto on_left = [](float u) { return u < 320.0f; };
-  int edges_left = 0;
-  for (std::uint32_t i : all.edge_indices) edges_left += on_left(edges.u[i]);
-  ASSERT_GT(edges_left, 100);  // without the filter the car has its share
-  for (std::uint32_t i : static_only.edge_indices) EXPECT_FALSE(on_left(edges.u[i])) << edges.u[i];
-  EXPECT_GT(static_only.edge_indices.size(), 100u);
-  for (float u : static_only.support_u) EXPECT_FALSE(on_left(u)) << u;
-  EXPECT_GT(static_only.support_u.size(), 50u);
-}
-
 }  // namespace
 }  // namespace semantic_edge_vo

@@ -5,15 +5,13 @@
 // service) starts a new map there. A car that stops at a light and drives on is tracked all along,
 // on the map it had, also when the first second of its start never reaches the odometry (dropped
 // frames) or a van blocks the view while it stands. Frames dropped from the stream are counted from
-// the stamps; a loss it never recovers from predicts on for 5 s, then stands. With
-// narrow_epipolar_search its new keyframes' depths are better.
+// the stamps; a loss it never recovers from predicts on for 5 s, then stands.
 #include <cstdio>
 #include <map>
 
 #include <gtest/gtest.h>
 
 #include "semantic_edge_vo/class_table.h"
-#include "semantic_edge_vo/keyframe_depth_check.h"
 #include "semantic_edge_vo/odometry.h"
 #include "semantic_edge_vo/odometry_frame.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
@@ -38,8 +36,6 @@ struct DriveResult {
   std::map<int, FramePose> poses;  ///< by frame index, every frame once
   std::vector<Eigen::Isometry3d> truth;
   std::vector<double> speed;  ///< of the car, m/s
-  std::vector<DepthCheck> new_keyframe_depths;  ///< of each keyframe as it was made, against the true depths
-  std::vector<DepthCheck> older_keyframe_depths;  ///< of the keyframe before each new one, at that time
 };
 
 enum class Event {
@@ -51,9 +47,6 @@ enum class Event {
   kBlindedWhileDriving,
   kFramesDropped,
   kBlindedForGood,
-  kNone,
-  kNarrowedSearch,  ///< no event, with narrow_epipolar_search
-  kNarrowedSearchDeferredWindow,  ///< the same with the window on its own thread (window_delay 2)
 };
 
 constexpr int kStopFrames = 120;       ///< the drive with a stop: to the light (braking from about 15 m), 3 s there, and on
@@ -92,8 +85,6 @@ DriveResult drive(Event event) {
   synthetic::SyntheticSequence sequence(options);
   const FrameBuilder builder(FrameBuilderOptions{}, sequence.camera(), ClassTable::cityscapes().names());
   OdometryOptions odometry_options = shippedOdometryOptions();
-  odometry_options.narrow_epipolar_search = event == Event::kNarrowedSearch || event == Event::kNarrowedSearchDeferredWindow;
-  if (event == Event::kNarrowedSearchDeferredWindow) odometry_options.window_delay = 2;
   Odometry odometry(odometry_options, sequence.camera());
   DriveResult run;
   // As in the tracking nodelet, the odometry numbers the frames it receives: dropped frames are seen
@@ -108,8 +99,6 @@ DriveResult drive(Event event) {
   };
   const int frames = stop || event == Event::kBlindedForGood ? kStopFrames : kFrames;
   int last_standing = -1, first_standing = -1;
-  std::map<int, cv::Mat> depths;  ///< true depths of the frames the odometry received since its oldest keyframe, by its numbering
-  std::shared_ptr<Keyframe> last_keyframe;
   for (int i = 0; i < frames; ++i) {
     synthetic::SyntheticFrame frame = sequence.frame(i);
     run.truth.push_back(frame.T_world_cam);
@@ -127,18 +116,6 @@ DriveResult drive(Event event) {
     drive_index.push_back(i);
     EXPECT_FALSE(error) << error.reason;
     keep(odometry.process(odometry_frame));
-    depths[odometry_frame->index] = frame.depth;
-    const auto& keyframes = odometry.keyframes();
-    const std::shared_ptr<Keyframe> newest = keyframes.empty() ? nullptr : keyframes.back();
-    if (newest && newest != last_keyframe && newest->frame->index == odometry_frame->index) {
-      run.new_keyframe_depths.push_back(checkDepths(newest->points, depths.at(newest->frame->index)));
-      if (keyframes.size() >= 2) {
-        const Keyframe& older = *keyframes[keyframes.size() - 2];
-        run.older_keyframe_depths.push_back(checkDepths(older.points, depths.at(older.frame->index)));
-      }
-    }
-    last_keyframe = newest;
-    if (!keyframes.empty()) depths.erase(depths.begin(), depths.lower_bound(keyframes.front()->frame->index));
   }
   keep(odometry.flush());
   return run;
@@ -205,43 +182,6 @@ TEST(Odometry, ARestartStartsANewMapWhereTheOldOneWas) {
   EXPECT_TRUE(run.poses.at(kEvent).recovered) << "the frame after the restart starts the new map";
   EXPECT_TRUE(run.poses.at(kEvent).keyframe);
   expectContinuousAcross(run, "a restart");
-}
-
-/// Edge points of the keyframes whose depth was wrong (DepthCheck), and all.
-std::pair<int, int> wrongEdgeDepths(const std::vector<DepthCheck>& checks) {
-  std::pair<int, int> counts;
-  for (const DepthCheck& check : checks) {
-    counts.first += check.edges_wrong;
-    counts.second += check.edges;
-  }
-  return counts;
-}
-
-/// The city's facades repeat (windows, bricks): along the previous keyframe's long epipolar line
-/// the next window can match better than the right one; the frame before the keyframe narrows it.
-void expectNarrowedSearchGivesBetterDepths(Event narrowed_event) {
-  const DriveResult plain = drive(Event::kNone), narrowed = drive(narrowed_event);
-  ASSERT_EQ(narrowed.poses.size(), static_cast<std::size_t>(kFrames)) << "every frame gets a pose";
-  for (int i = 0; i < kFrames; ++i) EXPECT_TRUE(narrowed.poses.at(i).trusted) << "frame " << i;
-  expectContinuousAcross(narrowed, "no event, narrowed epipolar searches");
-  // As made, and when the next keyframe came (deferred: after the merge triangulated them again).
-  for (const bool older : {false, true}) {
-    const auto [plain_wrong, plain_edges] = wrongEdgeDepths(older ? plain.older_keyframe_depths : plain.new_keyframe_depths);
-    const auto [narrowed_wrong, narrowed_edges] = wrongEdgeDepths(older ? narrowed.older_keyframe_depths : narrowed.new_keyframe_depths);
-    std::printf("odometry, %s keyframes' wrong edge depths: %d of %d plain, %d of %d narrowed\n", older ? "older" : "new", plain_wrong,
-                plain_edges, narrowed_wrong, narrowed_edges);
-    ASSERT_GT(narrowed_edges, 0);
-    EXPECT_LT(static_cast<double>(narrowed_wrong) / narrowed_edges, 0.8 * plain_wrong / std::max(1, plain_edges)) << (older ? "older" : "new");
-  }
-}
-
-TEST(Odometry, NewKeyframePointsSearchedThroughTheFrameBeforeGetBetterDepths) {
-  expectNarrowedSearchGivesBetterDepths(Event::kNarrowedSearch);
-}
-
-TEST(Odometry, NewKeyframePointsSearchedThroughTheFrameBeforeGetBetterDepthsWithTheWindowDeferred) {
-  // The deferred window's merge triangulates the active keyframe again, through the same frame.
-  expectNarrowedSearchGivesBetterDepths(Event::kNarrowedSearchDeferredWindow);
 }
 
 /// Frames of the car at rest (the camera still bounces a few millimetres).
