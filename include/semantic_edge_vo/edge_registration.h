@@ -15,7 +15,7 @@ namespace semantic_edge_vo {
 struct ReferenceEdge {
   Eigen::Vector3d point;        ///< in the reference optical frame, metres
   Eigen::Vector2d normal;       ///< unit gradient direction in the reference image
-  std::uint32_t class_mask = 1; ///< its SNNF layers (see ClassAssociation)
+  std::uint32_t layers = 1;     ///< its SNNF layers (MapPoint::field_layers; see ClassAssociation)
   double weight = 1.0;
 };
 

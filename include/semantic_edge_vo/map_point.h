@@ -11,6 +11,9 @@ struct MapPoint {
   double inverse_depth = 0.0;           ///< 1 / z in the host's optical frame, 1/m (arbitrary monocular scale)
   double inverse_depth_variance = 1.0;  ///< 1/m^2
   std::uint32_t class_mask = 0;         ///< class bits; 0: supportive point (photometric residual only)
+  /// Layers of a semantic field (SNNF) its edge is matched in: its classes, or the all-edges layer
+  /// where the drive cannot rely on them (ClassReliability). Other field kinds do not read it.
+  std::uint32_t field_layers = 0;
   Eigen::Vector2f normal = Eigen::Vector2f::Zero();  ///< unit image-gradient direction (edge points)
   int observations = 0;                 ///< depth measurements fused so far
 

@@ -13,7 +13,9 @@ namespace semantic_edge_vo {
 enum class FieldKind {
   kAnnf,  ///< one field for all edges
   kOnnf,  ///< one field per gradient-direction bin
-  kSnnf,  ///< one field per semantic class; an edge with several classes is in each of their fields
+  kSnnf,  ///< one field per semantic class; an edge with several classes is in each of their fields.
+          ///< With more than one class, one more layer holds every edge (what a class the drive
+          ///< cannot rely on is matched in: see ClassReliability)
 };
 const char* toString(FieldKind kind);
 /// Parses "annf" | "onnf" | "snnf"; false on anything else.
@@ -74,6 +76,7 @@ struct NearestNeighborFieldData {
   FieldKind kind = FieldKind::kSnnf;
   int num_layers = 0;
   int orientation_bins = 0;
+  int all_edges_layer = -1;  ///< the layer holding every edge (ANNF: 0; SNNF: after the classes); -1: none (ONNF)
   std::vector<std::string> layer_names;
   float truncation_radius = 0.0f;
   std::vector<FieldLevelData> levels;
@@ -87,6 +90,7 @@ class NearestNeighborFieldView {
   FieldKind kind = FieldKind::kSnnf;
   int num_layers = 0;
   int orientation_bins = 0;
+  int all_edges_layer = -1;  ///< the layer holding every edge; -1: none
   float truncation_radius = 0.0f;
   std::vector<FieldLevelView> levels;
 
@@ -109,8 +113,8 @@ inline float toLevel(float full, float scale) { return scale * (full + 0.5f) - 0
 inline float toFull(float level, float scale) { return (level + 0.5f) / scale - 0.5f; }
 
 /// Builds every level of the field over all `edges` of a width x height image.
-/// @param[in] num_classes SNNF layers (size of the class table); ignored by ANNF and ONNF
-/// @param[in] class_names SNNF layer names (may be empty)
+/// @param[in] class_names the class table: SNNF layers (and, with more than one class, the all-edges
+///            layer after them); ignored by ANNF and ONNF
 NearestNeighborFieldData buildNearestNeighborField(const EdgeSetView& edges, int width, int height,
                                                    const std::vector<std::string>& class_names,
                                                    const FieldOptions& options);

@@ -46,7 +46,7 @@ void EdgeRegistration::layersOf(const ReferenceEdge& edge, const Eigen::Isometry
       return;
     case FieldKind::kSnnf:
       for (int layer = 0; layer < field.num_layers; ++layer)
-        if ((edge.class_mask >> layer) & 1u) layers->push_back(layer);
+        if ((edge.layers >> layer) & 1u) layers->push_back(layer);
       return;
     case FieldKind::kOnnf: {
       // The gradient direction as the current estimate warps it: move one pixel along the normal

@@ -109,7 +109,7 @@ bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const Pyram
   // Edge points match only where the target has an edge of a class they have. Where the whole line
   // has none, the point's classes are missing there (a label that flickered between the frames):
   // any edge will do then, rather than no measurement (the paper's soft association, Sec. III-B).
-  if (scanLine(point.class_mask) == 0 && edge_gated && target_edges->classRestricted()) scanLine(kAllClasses);
+  if (scanLine(point.field_layers) == 0 && edge_gated && target_edges->classRestricted()) scanLine(kAllClasses);
   if (best < 0) return false;
   const double best_error = errors[static_cast<std::size_t>(best)];
   if (std::sqrt(best_error / kPattern) > options.max_pattern_error) return false;

@@ -46,12 +46,14 @@ int orientationBinOf(float nx, float ny, int bins) {
 }
 
 /// Bit mask of the layers an edge pixel seeds.
-std::uint32_t layerMaskOf(FieldKind kind, float nx, float ny, std::uint32_t class_mask, int bins, int num_layers) {
+std::uint32_t layerMaskOf(FieldKind kind, float nx, float ny, std::uint32_t class_mask, int bins, int num_layers, int all_edges_layer) {
   switch (kind) {
     case FieldKind::kAnnf: return 1u;
     case FieldKind::kOnnf: return 1u << orientationBinOf(nx, ny, bins);
-    case FieldKind::kSnnf:
-      return num_layers >= 32 ? class_mask : class_mask & ((1u << num_layers) - 1u);
+    case FieldKind::kSnnf: {
+      const std::uint32_t classes = num_layers >= 32 ? class_mask : class_mask & ((1u << num_layers) - 1u);
+      return all_edges_layer >= 0 ? classes | 1u << all_edges_layer : classes;
+    }
   }
   return 0u;
 }
@@ -235,6 +237,7 @@ NearestNeighborFieldView NearestNeighborFieldData::view() const {
   v.kind = kind;
   v.num_layers = num_layers;
   v.orientation_bins = orientation_bins;
+  v.all_edges_layer = all_edges_layer;
   v.truncation_radius = truncation_radius;
   for (const auto& level : levels) v.levels.push_back(viewOf(level));
   return v;
@@ -247,6 +250,7 @@ int NearestNeighborFieldView::orientationBin(float normal_x, float normal_y) con
 std::string NearestNeighborFieldView::validate() const {
   if (num_layers < 1 || num_layers > 32) return "num_layers must be in [1, 32]";
   if (kind == FieldKind::kOnnf && orientation_bins != num_layers) return "onnf needs one layer per orientation bin";
+  if (all_edges_layer < -1 || all_edges_layer >= num_layers) return "all_edges_layer must be a layer or -1";
   if (levels.empty()) return "field has no level";
   if (!(truncation_radius > 0.0f)) return "truncation_radius must be > 0";
   for (std::size_t l = 0; l < levels.size(); ++l) {
@@ -265,6 +269,7 @@ NearestNeighborFieldData buildNearestNeighborField(const EdgeSetView& edges, int
   switch (options.kind) {
     case FieldKind::kAnnf:
       field.num_layers = 1;
+      field.all_edges_layer = 0;
       field.layer_names = {"all"};
       break;
     case FieldKind::kOnnf:
@@ -277,16 +282,23 @@ NearestNeighborFieldData buildNearestNeighborField(const EdgeSetView& edges, int
         field.layer_names.push_back(name.str());
       }
       break;
-    case FieldKind::kSnnf:
-      field.num_layers = std::clamp(static_cast<int>(class_names.size()), 1, 32);
+    case FieldKind::kSnnf: {
+      const int classes = std::clamp(static_cast<int>(class_names.size()), 1, 32);
       field.layer_names = class_names;
-      field.layer_names.resize(static_cast<std::size_t>(field.num_layers), "class");
+      field.layer_names.resize(static_cast<std::size_t>(classes), "class");
+      // One class (Canny edges) is itself every edge; a 32nd bit is not left for the extra layer.
+      field.all_edges_layer = classes == 1 ? 0 : classes < 32 ? classes : -1;
+      if (field.all_edges_layer == classes) field.layer_names.push_back("all");
+      field.num_layers = static_cast<int>(field.layer_names.size());
       break;
+    }
   }
   std::vector<std::uint32_t> layer_masks(edges.size());
+  // A class bit beyond the class table seeds nothing (the all-edges layer is the field's own).
+  const int class_layers = field.kind == FieldKind::kSnnf && field.all_edges_layer > 0 ? field.num_layers - 1 : field.num_layers;
   for (std::size_t i = 0; i < edges.size(); ++i)
     layer_masks[i] = layerMaskOf(options.kind, edges.normal_x[i], edges.normal_y[i], edges.class_mask[i],
-                                 options.orientation_bins, field.num_layers);
+                                 options.orientation_bins, class_layers, field.kind == FieldKind::kSnnf ? field.all_edges_layer : -1);
   // Every level keeps all full-resolution seeds, so a curve of edges holds 2^l seeds per pixel of
   // level l, and a coarse level's buckets fill up: from level 2 on the bucket side halves with each
   // level, down to 2 px (4, 4, 2, 2 px at cell_size 4). Smaller buckets mean more of them to visit

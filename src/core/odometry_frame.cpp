@@ -11,7 +11,7 @@ std::vector<MapPoint> candidatesFrom(const EdgeSetView& edges, const std::vector
     MapPoint point;
     point.u = edges.u[i];
     point.v = edges.v[i];
-    point.class_mask = edges.class_mask[i];
+    point.class_mask = point.field_layers = edges.class_mask[i];
     point.normal = Eigen::Vector2f(edges.normal_x[i], edges.normal_y[i]);
     candidates.push_back(point);
   }

@@ -78,7 +78,7 @@ Tracker::TrackedPoints Tracker::trackedPoints() const {
   for (const MapPoint& point : keyframe_->points)
     if (point.isEdge() && tracked(point))
       points.edges.push_back({camera.backProject(point.u, point.v, 1.0 / point.inverse_depth), point.normal.cast<double>(),
-                              point.class_mask, edge_weight});
+                              point.field_layers, edge_weight});
   return points;
 }
 

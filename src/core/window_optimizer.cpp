@@ -15,13 +15,13 @@
 namespace semantic_edge_vo {
 namespace {
 
-/// The nearest edge of a class the point has (any edge for ANNF/ONNF fields), within `radius`.
-bool associate(const NearestNeighborFieldView& field, std::uint32_t class_mask, const Eigen::Vector2d& pixel, double radius,
+/// The nearest edge of the point's semantic layers (any edge for ANNF/ONNF fields), within `radius`.
+bool associate(const NearestNeighborFieldView& field, std::uint32_t layers, const Eigen::Vector2d& pixel, double radius,
                FieldMatch* best) {
   bool found = false;
   FieldMatch match;
   for (int layer = 0; layer < field.num_layers; ++layer) {
-    if (field.kind == FieldKind::kSnnf && !((class_mask >> layer) & 1u)) continue;
+    if (field.kind == FieldKind::kSnnf && !((layers >> layer) & 1u)) continue;
     if (field.nearestWithin(0, layer, static_cast<float>(pixel.x()), static_cast<float>(pixel.y()), static_cast<float>(radius), &match) &&
         (!found || match.distance < best->distance)) {
       *best = match;
@@ -141,7 +141,7 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
       observation.has_prior = found_count[r] == 0;  // the point's first observation carries its prior
       FieldMatch match;
       observation.has_edge = point.isEdge() && options_.edge_weight > 0.0 && target.frame->has_field &&
-                             associate(target.frame->field, point.class_mask, pixel, options_.edge_radius, &match);
+                             associate(target.frame->field, point.field_layers, pixel, options_.edge_radius, &match);
       if (observation.has_edge) {
         observation.match = Eigen::Vector2d(match.u, match.v);
         observation.normal = Eigen::Vector2d(match.normal_x, match.normal_y);

@@ -58,6 +58,7 @@ void moveFieldInto(NearestNeighborFieldData&& field, NearestNeighborField* msg) 
   msg->kind = toString(field.kind);
   msg->num_layers = static_cast<std::uint32_t>(field.num_layers);
   msg->orientation_bins = static_cast<std::uint32_t>(field.orientation_bins);
+  msg->all_edges_layer = field.all_edges_layer;
   msg->layer_names = std::move(field.layer_names);
   msg->truncation_radius = field.truncation_radius;
   msg->levels.resize(field.levels.size());
@@ -85,6 +86,7 @@ NearestNeighborFieldView fieldView(const NearestNeighborField& msg, std::string*
   if (!parseFieldKind(msg.kind, &view.kind)) *error = "unknown field kind '" + msg.kind + "'";
   view.num_layers = static_cast<int>(msg.num_layers);
   view.orientation_bins = static_cast<int>(msg.orientation_bins);
+  view.all_edges_layer = msg.all_edges_layer;
   view.truncation_radius = msg.truncation_radius;
   for (const auto& level : msg.levels) {
     FieldLevelView v;

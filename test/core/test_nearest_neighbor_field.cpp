@@ -23,10 +23,11 @@ EdgeSet randomEdges(int n, int width, int height, int num_classes, std::uint32_t
   return edges;
 }
 
-/// The layers an edge seeds, computed independently of the field's code.
-bool inLayer(const EdgeSet& edges, std::size_t i, FieldKind kind, int layer, int bins) {
+/// The layers an edge seeds, computed independently of the field's code (SNNF: a layer past the
+/// `classes` class layers holds every edge).
+bool inLayer(const EdgeSet& edges, std::size_t i, FieldKind kind, int layer, int bins, int classes) {
   if (kind == FieldKind::kAnnf) return true;
-  if (kind == FieldKind::kSnnf) return (edges.class_mask[i] >> layer) & 1u;
+  if (kind == FieldKind::kSnnf) return layer >= classes || ((edges.class_mask[i] >> layer) & 1u);
   double angle = std::atan2(edges.normal_y[i], edges.normal_x[i]) * 180.0 / M_PI;
   if (angle < 0) angle += 360.0;
   return static_cast<int>(angle / (360.0 / bins)) % bins == layer;
@@ -72,7 +73,7 @@ TEST_P(FieldAgainstBruteForce, NearestAndAnyWithinAreExactAtEveryLevelAndLayer) 
         const float x = qx(rng), y = qy(rng);
         float best = std::numeric_limits<float>::max();
         for (std::size_t i = 0; i < edges.size(); ++i) {
-          if (!inLayer(edges, i, options.kind, layer, options.orientation_bins)) continue;
+          if (!inLayer(edges, i, options.kind, layer, options.orientation_bins, classes)) continue;
           best = std::min(best, std::hypot(toLevel(edges.u[i], scale) - x, toLevel(edges.v[i], scale) - y));
         }
         FieldMatch match;
@@ -86,7 +87,7 @@ TEST_P(FieldAgainstBruteForce, NearestAndAnyWithinAreExactAtEveryLevelAndLayer) 
           ASSERT_TRUE(hit) << "level " << level << " layer " << layer << " query " << x << "," << y;
           EXPECT_NEAR(match.distance, best, 1e-4f);
           EXPECT_NEAR(std::hypot(match.u - x, match.v - y), best, 1e-4f);
-          EXPECT_TRUE(inLayer(edges, match.edge, options.kind, layer, options.orientation_bins));
+          EXPECT_TRUE(inLayer(edges, match.edge, options.kind, layer, options.orientation_bins, classes));
           EXPECT_EQ(match.normal_x, edges.normal_x[match.edge]);
           ++found;
         } else {
@@ -142,7 +143,7 @@ TEST_P(FieldAgainstBruteForce, SharedClassEdgeTestAgreesWithBruteForce) {
   std::vector<std::uint32_t> layers_of(edges.size(), 0u);  // each edge's layers, as bits
   for (std::size_t i = 0; i < edges.size(); ++i)
     for (int layer = 0; layer < field.num_layers; ++layer)
-      if (inLayer(edges, i, options.kind, layer, options.orientation_bins)) layers_of[i] |= 1u << layer;
+      if (inLayer(edges, i, options.kind, layer, options.orientation_bins, classes)) layers_of[i] |= 1u << layer;
   const std::uint32_t all_layers = (1u << field.num_layers) - 1u;
 
   std::mt19937 rng(3);
@@ -167,18 +168,37 @@ INSTANTIATE_TEST_SUITE_P(AllKinds, FieldAgainstBruteForce,
                          ::testing::Values(FieldKind::kAnnf, FieldKind::kOnnf, FieldKind::kSnnf),
                          [](const auto& info) { return std::string(toString(info.param)); });
 
-TEST(NearestNeighborField, MultiClassPixelSeedsEachOfItsClassLayers) {
+TEST(NearestNeighborField, MultiClassPixelSeedsEachOfItsClassLayersAndTheAllEdgesLayer) {
   EdgeSet edges;
   edges.push_back(10.0f, 10.0f, 1.0f, 0.0f, 1.0f, 0b101u);  // classes 0 and 2
+  edges.push_back(40.0f, 10.0f, 1.0f, 0.0f, 1.0f, 0b010u);  // class 1
   FieldOptions options;
   options.pyramid_levels = 1;
   const auto data = buildNearestNeighborField(edges.view(), 64, 64, {"a", "b", "c"}, options);
   const auto field = data.view();
+  ASSERT_EQ(field.num_layers, 4);
+  ASSERT_EQ(field.all_edges_layer, 3);
+  EXPECT_EQ(data.layer_names.back(), "all");
   FieldMatch match;
   EXPECT_TRUE(field.nearest(0, 0, 12.0f, 10.0f, &match));
-  EXPECT_FALSE(field.nearest(0, 1, 12.0f, 10.0f, &match));
+  EXPECT_FALSE(field.nearest(0, 1, 12.0f, 10.0f, &match));  // class 1 is 28 px away, beyond the truncation radius
   EXPECT_TRUE(field.nearest(0, 2, 12.0f, 10.0f, &match));
   EXPECT_FLOAT_EQ(match.distance, 2.0f);
+  // The all-edges layer finds the nearest edge of any class.
+  EXPECT_TRUE(field.nearest(0, 3, 37.0f, 10.0f, &match));
+  EXPECT_EQ(match.edge, 1u);
+  EXPECT_TRUE(field.nearest(0, 3, 12.0f, 10.0f, &match));
+  EXPECT_EQ(match.edge, 0u);
+}
+
+TEST(NearestNeighborField, OneClassIsItsOwnAllEdgesLayer) {
+  EdgeSet edges;
+  edges.push_back(10.0f, 10.0f, 1.0f, 0.0f, 1.0f, 1u);
+  FieldOptions options;
+  options.pyramid_levels = 1;
+  const auto field = buildNearestNeighborField(edges.view(), 64, 64, {"edge"}, options).view();
+  EXPECT_EQ(field.num_layers, 1);
+  EXPECT_EQ(field.all_edges_layer, 0);
 }
 
 TEST(NearestNeighborField, ValidateCatchesCorruptArrays) {
