@@ -5,8 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "semantic_edge_vo/class_reliability.h"
 #include "semantic_edge_vo/deferred_window_optimization.h"
 #include "semantic_edge_vo/epipolar_depth.h"
+#include "semantic_edge_vo/frame_consistency.h"
 #include "semantic_edge_vo/keyframe.h"
 #include "semantic_edge_vo/keyframe_motion.h"
 #include "semantic_edge_vo/tracker.h"
@@ -19,6 +21,7 @@ enum class OdometryState {
   kInitializing,  ///< no map yet (first frames, or after a loss)
   kTracking,      ///< pose trusted
   kLost,          ///< tracking failed on this frame: its pose is a prediction, not trusted
+  kUntrusted,     ///< tracked, but no solution agreed with the recent frames: its pose is a prediction, not trusted
 };
 const char* toString(OdometryState state);
 
@@ -28,6 +31,8 @@ struct OdometryOptions {
   EpipolarSearchOptions epipolar;
   WindowOptimizerOptions window_optimizer;
   KeyframeMotionOptions keyframe_motion;
+  ClassReliabilityOptions class_reliability;
+  FrameConsistencyOptions consistency;
   bool optimize_window = true;         ///< run the windowed optimisation at each new keyframe
   /// Frames after its keyframe at which the windowed optimisation, run meanwhile on its own thread,
   /// is merged (waiting for it if needed; at the next keyframe at the latest). 0: in line, at once.
@@ -57,6 +62,11 @@ struct FramePose {
   bool keyframe = false;    ///< the frame became a keyframe
   int keyframe_id = -1;     ///< keyframe it was tracked against
   TrackingResult tracking;
+  /// How far the tracked motion was from the prediction, in the car's usual travel per frame (0:
+  /// not compared; see FrameConsistencyOptions); for an untrusted frame, the rejected solution's.
+  double motion_deviation = 0.0;
+  /// A keyframe made (or refused) at this frame: the scale of its points against the map's (1: none).
+  double keyframe_scale = 1.0;
   double tracking_ms = 0.0, mapping_ms = 0.0;  ///< on the caller's thread (mapping: depths, keyframes, waiting)
   double window_ms = 0.0;  ///< the windowed optimisation merged at this frame (on its own thread when deferred)
 };
@@ -91,26 +101,40 @@ class Odometry {
   /// predictions and the frame's pose; otherwise nothing changes.
   bool relocalize(const std::shared_ptr<const OdometryFrame>& frame, std::vector<FramePose>* poses);
   FramePose track(const std::shared_ptr<const OdometryFrame>& frame);
-  /// The pose of a frame tracked against the active keyframe (lost when the tracking failed); the
-  /// depths, corners and keyframe decision follow from it.
-  FramePose trackedPose(const std::shared_ptr<const OdometryFrame>& frame, const TrackingResult& result, double tracking_ms);
+  /// How a tracked solution compares with the recent frames.
+  FrameAgreement agreementOf(const OdometryFrame& frame, const TrackingResult& result) const;
+  /// When the solution disagrees with the recent frames, the frame is tracked again from the
+  /// prediction, photometric residuals alone and (SNNF) every edge point in the all-edges layer;
+  /// of the solutions whose motion agrees, the one with the most inliers is kept. Returns whether
+  /// one did (`result` can be trusted).
+  bool retrackUnlessConsistent(const OdometryFrame& frame, const Eigen::Isometry3d& prediction, TrackingResult* result,
+                               double* motion_deviation);
+  /// The pose of a frame tracked against the active keyframe (lost when the tracking failed; the
+  /// prediction when `consistent` is false); the depths, corners and keyframe decision follow from it.
+  FramePose trackedPose(const std::shared_ptr<const OdometryFrame>& frame, const TrackingResult& result, bool consistent,
+                        double tracking_ms);
   /// Median flow of the keyframe's measured points between where the frame's rotation alone and its
   /// whole motion take them, px: the parallax a keyframe made from the frame would triangulate with.
   double travelParallax(const Keyframe& keyframe, const Eigen::Isometry3d& T_frame_kf) const;
-  /// The median travel of driving_motions_ (zero before any).
-  Vector6d drivingMotion() const;
+  /// The median travel of the newest `newest` driving_motions_ (zero before any).
+  Vector6d drivingMotion(std::size_t newest = kDrivingMotions) const;
   /// Refines the active keyframe's depths with a tracked frame. Returns the frame's edge test (null
   /// without a field), which the frame keeps if it becomes a keyframe.
   std::shared_ptr<const SharedClassEdgeTest> refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf);
-  /// Makes the frame a keyframe: it joins the window, the windowed optimisation settles its pose
-  /// (in line), then its points are triangulated. It keeps `frame_edges` (refineDepths' test) for
-  /// the next keyframe's epipolar search. Returns its pose.
-  Eigen::Isometry3d makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame,
-                                 std::shared_ptr<const SharedClassEdgeTest> frame_edges, Eigen::Isometry3d T_world_cam,
-                                 FramePose* pose);
+  /// Makes the frame a keyframe when its points, triangulated from the tracked pose, agree with the
+  /// map's scale (FrameConsistencyOptions::max_keyframe_scale_change): it joins the window, the
+  /// windowed optimisation settles its pose (in line; `pose` gets it), then its points are
+  /// triangulated from there. It keeps `frame_edges` (refineDepths' test) for the next keyframe's
+  /// epipolar search. False when the scale disagrees: nothing changed, the frame is not to be trusted.
+  bool makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, std::shared_ptr<const SharedClassEdgeTest> frame_edges,
+                    FramePose* pose);
   /// The keyframe's points from its frame's candidates: prior depths from the previous keyframe's
   /// measured points, then an epipolar search against the previous keyframe.
-  void triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const;
+  /// @return the scale of the new depths against the map's: the median of the map's inverse depths
+  ///         over the measured ones, where both are known (1 when too few are)
+  double triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const;
+  /// The frame's pose when no solution could be trusted: the prediction; lost after too many in a row.
+  FramePose untrustedPose(const OdometryFrame& frame, FramePose pose);
   /// Epipolar search of each point of the host in the target, fused into its depth filter.
   void measureDepths(const PyramidLevel& host, const EpipolarTarget& target, std::vector<MapPoint>* points) const;
   /// Optimises the window at a new keyframe: in line, or started on its own thread.
@@ -120,6 +144,9 @@ class Odometry {
   /// @return the correction of the active keyframe's pose (identity when it did not move)
   Eigen::Isometry3d mergeWindow(FramePose* pose);
   void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);
+  /// The keyframe's points from its frame's candidates, each matched in the SNNF layers the drive's
+  /// class reliability gives its classes.
+  void takeCandidates(Keyframe* keyframe) const;
   /// Follows the active keyframe's corners into a tracked frame (KeyframeMotion).
   void followCorners(const OdometryFrame& frame);
   /// Initial guesses for the frame, from the last pose and the frame intervals since it.
@@ -150,6 +177,7 @@ class Odometry {
   int merge_window_at_ = 0;  ///< frame index at which the deferred optimisation is merged
   TwoViewInitializer initializer_;
   KeyframeMotion keyframe_motion_;  ///< corners from the active keyframe
+  ClassReliability class_reliability_;
   OdometryState state_ = OdometryState::kInitializing;
   bool recovering_ = false;
   bool relocalizing_ = false;  ///< lost: each frame is tried against the map it had before a new initialisation's
@@ -177,11 +205,13 @@ class Odometry {
   /// after a stop (drivingMotion).
   std::deque<Vector6d> driving_motions_;
   static constexpr std::size_t kDrivingMotions = 100;  ///< 10 s at 10 Hz
+  static constexpr std::size_t kRestartMotions = 10;   ///< the last second: a new map's scale after a loss
   static constexpr double kStandingFraction = 0.1;     ///< of the driving travel: standing, or nearly
   /// Photometric inlier ratios of the last tracked frames: how well the map explained them (relocalize).
   std::deque<double> recent_inlier_ratios_;
   static constexpr std::size_t kRecentInlierRatios = 10;
   double last_inlier_ratio_ = 1.0;  ///< photometric inlier ratio of the last tracked frame (1: none)
+  int untrusted_in_a_row_ = 0;      ///< frames tracked but not trusted since the last trusted one
 };
 
 }  // namespace semantic_edge_vo

@@ -47,6 +47,12 @@ struct TrackingResult {
   double inlierRatio() const { return static_cast<double>(photometric_inliers) / std::max(1, photometric_residuals); }
 };
 
+/// Which layers of a semantic field (SNNF) the keyframe's edge points are matched in.
+enum class EdgeLayers {
+  kOwn,       ///< each point's own (MapPoint::field_layers)
+  kAllEdges,  ///< the all-edges layer, for every point: ANNF's association on the same field
+};
+
 /// Aligns frames to the active keyframe (paper III-C): photometric residuals on gradient magnitude
 /// over a small pixel pattern for every point, plus point-to-tangent residuals against the frame's
 /// nearest-neighbour field for edge points, Huber-weighted, Levenberg-Marquardt on SE(3),
@@ -64,8 +70,13 @@ class Tracker {
   /// @param[in] field its nearest-neighbour field, or nullptr for photometric-only tracking
   /// @param[in] guesses initial T_cam_kf candidates (constant velocity first)
   /// @param[in] previous_inlier_ratio photometric inlier ratio of the previous frame (1: none)
+  /// @param[in] layers the SNNF layers edge points are matched in (kAllEdges: the field must have an
+  ///            all-edges layer, see hasAllEdgesLayer)
   TrackingResult track(const ImagePyramid& frame, const NearestNeighborFieldView* field,
-                       const std::vector<Eigen::Isometry3d>& guesses, double previous_inlier_ratio = 1.0) const;
+                       const std::vector<Eigen::Isometry3d>& guesses, double previous_inlier_ratio = 1.0,
+                       EdgeLayers layers = EdgeLayers::kOwn) const;
+  /// Whether the keyframe's field is semantic with an all-edges layer (EdgeLayers::kAllEdges differs from kOwn).
+  bool hasAllEdgesLayer() const { return !all_layer_edges_.empty(); }
 
  private:
   struct Normal {
@@ -77,11 +88,10 @@ class Tracker {
     std::vector<float> pattern_values;            ///< gradient magnitude of the keyframe there
     std::vector<int> point_index;                 ///< keyframe point of each pattern block
   };
-  /// The points tracking aligns.
+  /// The points tracking aligns: the keyframe's photometric patterns and its edges as matched.
   struct TrackedPoints {
-    std::vector<LevelReference> references;  ///< per level
-    std::vector<ReferenceEdge> edges;        ///< the edge points with depth
-    bool empty() const { return references.empty() || references[0].point_index.empty(); }
+    const std::vector<LevelReference>& references;  ///< per level
+    const std::vector<ReferenceEdge>& edges;
   };
   /// Sums over a slice of the residuals of a level: cost, counts and normal equations.
   struct LevelSums {
@@ -105,11 +115,13 @@ class Tracker {
   /// Levenberg-Marquardt at one level from `T`; returns the final cost.
   double optimizeLevel(const TrackedPoints& points, int level, const ImagePyramid& frame, const NearestNeighborFieldView* field,
                        const ForwardMotionPrior& prior, Eigen::Isometry3d* T, int* iterations) const;
-  TrackedPoints trackedPoints() const;
+  void setReferences();
 
   TrackerOptions options_;
   std::shared_ptr<const Keyframe> keyframe_;
-  TrackedPoints all_;
+  std::vector<LevelReference> references_;      ///< per level, the points with depth
+  std::vector<ReferenceEdge> edges_;            ///< the edge points with depth, in their own layers
+  std::vector<ReferenceEdge> all_layer_edges_;  ///< the same in the all-edges layer (empty: the field has none)
   std::vector<EdgeRegistration> edge_residuals_; ///< per level
 };
 

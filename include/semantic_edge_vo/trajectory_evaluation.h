@@ -116,6 +116,19 @@ struct FrameToFrameErrors {
 std::string frameToFrameErrors(const std::vector<Eigen::Isometry3d>& gt, const std::vector<Eigen::Isometry3d>& est,
                                double min_gt_translation_m, FrameToFrameErrors* result);
 
+/// How far the estimate's scale jumps from one keyframe to the next. Between consecutive keyframes
+/// the estimated camera travel over the true one is the estimate's local scale; the change of that
+/// scale from each keyframe interval to the next, compared over the intervals in which the camera
+/// travelled at least `min_gt_travel_m` (a standing car has no scale).
+struct KeyframeScaleChanges {
+  std::size_t intervals = 0;    ///< keyframe intervals whose scale was measured
+  double largest_change = 0.0;  ///< max over consecutive intervals of max(s2/s1, s1/s2) - 1 (0.3: 30 %)
+  std::size_t at_pair = 0;      ///< pair index of the keyframe between the two intervals
+};
+/// @param[in] keyframes pair indices of the keyframes, increasing
+std::string keyframeScaleChanges(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est,
+                                 const std::vector<std::size_t>& keyframes, double min_gt_travel_m, KeyframeScaleChanges* result);
+
 /// Camera centres (the translations of the poses), metres.
 std::vector<Eigen::Vector3d> positionsOf(const std::vector<Eigen::Isometry3d>& poses);
 

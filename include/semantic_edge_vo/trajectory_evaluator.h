@@ -12,6 +12,7 @@ struct TrajectoryEvaluationOptions {
   int rpe_delta_frames = 1;
   KittiDriftOptions kitti_drift;
   double min_gt_translation_m = 0.05;  ///< frame-to-frame directions need this much true motion, metres
+  double min_keyframe_travel_m = 0.2;  ///< keyframe intervals need this much true travel for their scale, metres
 
   std::string validate() const;
 };
@@ -32,11 +33,15 @@ struct TrajectoryEvaluation {
   KittiDriftResult drift_sim3_scale;  ///< estimated translations scaled by the Sim(3) scale (monocular)
   std::string drift_unavailable;
   FrameToFrameErrors frame_to_frame;
+  KeyframeScaleChanges keyframe_scale;  ///< with the estimate's keyframes
+  std::string keyframe_scale_unavailable;
 };
 
 /// Computes every metric on the pairs; fails only when the whole-trajectory alignment is impossible
 /// (fewer than 3 pairs, or an estimate that does not move).
+/// @param[in] keyframe_frames ground-truth frame numbers of the estimate's keyframes (empty: the
+///            keyframe scale changes are not available)
 std::string evaluateTrajectory(const PosePairs& pairs, const TrajectoryEvaluationOptions& options,
-                               TrajectoryEvaluation* evaluation);
+                               const std::vector<std::size_t>& keyframe_frames, TrajectoryEvaluation* evaluation);
 
 }  // namespace semantic_edge_vo

@@ -41,6 +41,10 @@ std::string readKittiPoses(const std::string& path, Trajectory* trajectory);
 std::string readTumTrajectory(const std::string& path, Trajectory* trajectory);
 /// Reads a KITTI times.txt: one strictly increasing time stamp (seconds) a line.
 std::string readTimes(const std::string& path, std::vector<double>* stamps);
+/// Reads the keyframes of a run: run_sequence's timing.txt (a '#' header line naming its columns,
+/// `frame` first and a `keyframe` flag among them; words such as the state may stand in other
+/// columns), or one frame number a line. Frame numbers, increasing.
+std::string readKeyframeFrames(const std::string& path, std::vector<std::size_t>* frames);
 /// Format of a trajectory file from the number of numbers on its first data line (12: KITTI, 8: TUM).
 std::string detectTrajectoryFormat(const std::string& path, TrajectoryFormat* format);
 /// Reads either format.

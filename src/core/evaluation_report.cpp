@@ -185,6 +185,18 @@ void markdownDrift(const TrajectoryEvaluation& e, const KittiDriftOptions& optio
      << figure(e.drift_as_given.rotation_deg_per_100m) << "** |\n\n";
 }
 
+void markdownKeyframeScale(const TrajectoryEvaluation& e, const TrajectoryEvaluationOptions& options, std::ostringstream& md) {
+  md << "## Scale between consecutive keyframes\n\n";
+  if (!e.keyframe_scale_unavailable.empty()) {
+    md << "Not available: " << e.keyframe_scale_unavailable << ".\n\n";
+    return;
+  }
+  md << "The estimated travel over the true one between consecutive keyframes (intervals of at least "
+     << figure(options.min_keyframe_travel_m) << " m of true travel): its largest change from one interval to the next.\n\n"
+     << "| intervals | largest change (%) | at pair |\n|---:|---:|---:|\n| " << e.keyframe_scale.intervals << " | "
+     << figure(100.0 * e.keyframe_scale.largest_change) << " | " << e.keyframe_scale.at_pair << " |\n\n";
+}
+
 void markdownSegments(const TrajectoryEvaluation& e, std::ostringstream& md) {
   if (!e.paper_ate_unavailable.empty()) return;
   md << "## Paper-protocol segments\n\n| first pair | poses | Sim(3) scale | RMSE (m) |\n|---:|---:|---:|---:|\n";
@@ -209,6 +221,7 @@ std::string evaluationMarkdown(const EvaluationSources& sources, const Trajector
   markdownAte(evaluation, options.paper_ate, md);
   markdownRelative(evaluation, options, md);
   markdownDrift(evaluation, options.kitti_drift, md);
+  markdownKeyframeScale(evaluation, options, md);
   markdownSegments(evaluation, md);
   md << "## Method\n\n"
      << "- ATE: RMSE of the differences of camera positions after aligning the estimate to the ground truth with "
@@ -261,6 +274,11 @@ std::string evaluationJson(const EvaluationSources& sources, const TrajectoryEva
                                       f.direction_motions ? jsonNumber(f.mean_direction_error_deg) : "null"}},
                                     1)},
       {"kitti_drift", jsonDrift(evaluation, options.kitti_drift, 1)},
+      {"keyframe_scale", jsonObject({{"unavailable", jsonAvailability(evaluation.keyframe_scale_unavailable)},
+                                     {"intervals", jsonCount(evaluation.keyframe_scale.intervals)},
+                                     {"largest_change", jsonNumber(evaluation.keyframe_scale.largest_change)},
+                                     {"at_pair", jsonCount(evaluation.keyframe_scale.at_pair)}},
+                                    1)},
   };
   return jsonObject(fields, 0) + "\n";
 }

@@ -73,6 +73,7 @@ const char* toString(OdometryState state) {
     case OdometryState::kInitializing: return "initializing";
     case OdometryState::kTracking: return "tracking";
     case OdometryState::kLost: return "lost";
+    case OdometryState::kUntrusted: return "untrusted";
   }
   return "unknown";
 }
@@ -83,6 +84,8 @@ std::string OdometryOptions::validate() const {
   if (error.empty()) error = epipolar.validate();
   if (error.empty()) error = window_optimizer.validate();
   if (error.empty()) error = keyframe_motion.validate();
+  if (error.empty()) error = class_reliability.validate();
+  if (error.empty()) error = consistency.validate();
   if (error.empty() && !(keyframe_flow > 0 && keyframe_min_in_view >= 0 && keyframe_min_in_view <= 1))
     error = "keyframe_flow must be > 0 px and keyframe_min_in_view in [0, 1]";
   if (error.empty() && (keyframe_max_interval < 1 || window_size < 1 || !(depth_neighbour_radius > 0)))
@@ -99,7 +102,8 @@ Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera)
       window_optimizer_(options.window_optimizer),
       deferred_window_(window_optimizer_),
       initializer_(options.initializer, camera),
-      keyframe_motion_(options.keyframe_motion, camera) {}
+      keyframe_motion_(options.keyframe_motion, camera),
+      class_reliability_(options.class_reliability) {}
 
 std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFrame>& frame) {
   if (state_ != OdometryState::kTracking) {
@@ -124,9 +128,10 @@ void Odometry::restart() {
   if (state_ != OdometryState::kTracking) return;
   state_ = OdometryState::kInitializing;
   recovering_ = true;
-  // The speed it drove at, not the last frame's: traffic that made the loss dragged the last frames
-  // towards standing (a truck alongside at our speed), and the new map would take that scale.
-  const double driving_speed = drivingMotion().head<3>().norm();
+  untrusted_in_a_row_ = 0;
+  // The speed it drove at over the last second, not the last frame's (traffic that made the loss may
+  // have dragged it towards standing) nor that of the last minutes (a car slows into a turn).
+  const double driving_speed = drivingMotion(kRestartMotions).head<3>().norm();
   speed_at_restart_ = driving_speed > 0.0 ? driving_speed : frameMotion().translation().norm();
 }
 
@@ -200,7 +205,7 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
   keyframe->id = next_keyframe_id_++;
   keyframe->T_world_cam = T_world_first;
   keyframe->frame = waiting_.front().frame;
-  keyframe->points = keyframe->frame->candidates;
+  takeCandidates(keyframe.get());
   const std::vector<double>& inverse_depths = initializer_.inverseDepths();
   for (std::size_t i = 0; i < keyframe->points.size(); ++i) {
     if (!(inverse_depths[i] > 0.0)) continue;
@@ -294,7 +299,7 @@ bool Odometry::relocalize(const std::shared_ptr<const OdometryFrame>& frame, std
   for (const FramePose& pose : *poses) remember(pose);
   state_ = OdometryState::kTracking;
   recovering_ = relocalizing_ = false;
-  FramePose pose = trackedPose(frame, result, elapsedMs(start));
+  FramePose pose = trackedPose(frame, result, true, elapsedMs(start));
   pose.recovered = true;
   poses->push_back(pose);
   return true;
@@ -302,17 +307,62 @@ bool Odometry::relocalize(const std::shared_ptr<const OdometryFrame>& frame, std
 
 FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
   const auto start = std::chrono::steady_clock::now();
-  const TrackingResult result = tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_, *frame), last_inlier_ratio_);
-  return trackedPose(frame, result, elapsedMs(start));
+  const std::vector<Eigen::Isometry3d> initial = guesses(*active_, *frame);
+  TrackingResult result = tracker_.track(*frame->pyramid, frame->fieldOrNull(), initial, last_inlier_ratio_);
+  double motion_deviation = 0.0;
+  const bool consistent = !result.ok || retrackUnlessConsistent(*frame, initial.front(), &result, &motion_deviation);
+  FramePose pose = trackedPose(frame, result, consistent, elapsedMs(start));
+  pose.motion_deviation = motion_deviation;
+  return pose;
 }
 
-FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& frame, const TrackingResult& result, double tracking_ms) {
+FrameAgreement Odometry::agreementOf(const OdometryFrame& frame, const TrackingResult& result) const {
+  const Eigen::Isometry3d T_last_world = T_world_last_.inverse();
+  const Eigen::Vector3d travel = (T_last_world * active_->T_world_cam * result.T_cam_kf.inverse()).translation();
+  const Eigen::Vector3d predicted = (T_last_world * predict(frame)).translation();
+  const double usual_travel = drivingMotion().head<3>().norm() * framesBetween(last_stamp_, stampOf(frame));
+  const double usual_ratio = recent_inlier_ratios_.empty() ? 0.0 : median({recent_inlier_ratios_.begin(), recent_inlier_ratios_.end()});
+  return compareWithRecentFrames(result.inlierRatio(), usual_ratio, options_.tracker.accept_inlier_ratio, travel, predicted,
+                                 usual_travel, options_.consistency);
+}
+
+bool Odometry::retrackUnlessConsistent(const OdometryFrame& frame, const Eigen::Isometry3d& prediction, TrackingResult* result,
+                                       double* motion_deviation) {
+  const FrameAgreement agreement = agreementOf(frame, *result);
+  *motion_deviation = agreement.motion_deviation;
+  if (agreement.ok()) return true;
+  std::vector<TrackingResult> alternatives = {tracker_.track(*frame.pyramid, nullptr, {prediction})};
+  if (frame.has_field && tracker_.hasAllEdgesLayer())
+    alternatives.push_back(tracker_.track(*frame.pyramid, &frame.field, {prediction}, 1.0, EdgeLayers::kAllEdges));
+  // Of the solutions whose motion agrees with the recent frames (this one may, with fewer inliers
+  // than they had: a turn brings new content), the one with the most inliers is taken. None: the
+  // frame is not trusted.
+  TrackingResult best = *result;
+  bool found = agreement.motion_ok;
+  int iterations = result->iterations;
+  for (const TrackingResult& alternative : alternatives) {
+    iterations += alternative.iterations;
+    if (alternative.ok && agreementOf(frame, alternative).motion_ok && (!found || alternative.inlierRatio() > best.inlierRatio())) {
+      best = alternative;
+      found = true;
+    }
+  }
+  *result = best;
+  result->iterations = iterations;
+  if (found) *motion_deviation = agreementOf(frame, *result).motion_deviation;
+  return found;
+}
+
+FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& frame, const TrackingResult& result, bool consistent,
+                                double tracking_ms) {
   FramePose pose;
   pose.index = frame->index;
   pose.time = frame->time;
   pose.keyframe_id = active_->id;
   pose.tracking = result;
   pose.tracking_ms = tracking_ms;
+  if (result.ok && !consistent) return untrustedPose(*frame, pose);
+  untrusted_in_a_row_ = 0;
   last_inlier_ratio_ = pose.tracking.ok ? pose.tracking.inlierRatio() : 1.0;
   if (!pose.tracking.ok) {
     // Lost: report the prediction, untrusted; from the next frame on, try the map it had until a
@@ -330,16 +380,33 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   const auto mapping_start = std::chrono::steady_clock::now();
   std::shared_ptr<const SharedClassEdgeTest> frame_edges = refineDepths(*frame, pose.tracking.T_cam_kf);
   followCorners(*frame);
+  if (frame->has_field) class_reliability_.observe(*active_, pose.tracking.T_cam_kf, frame->field);
   ++frames_since_keyframe_;
   const bool few_in_view = pose.tracking.points_in_view < options_.keyframe_min_in_view * pose.tracking.points;
   // The interval only while the camera travels: standing, a keyframe would measure no depth.
   const bool interval = frames_since_keyframe_ >= options_.keyframe_max_interval &&
                         travelParallax(*active_, pose.tracking.T_cam_kf) >= options_.keyframe_min_parallax;
   if (pose.tracking.mean_flow > options_.keyframe_flow || few_in_view || interval) {
-    pose.T_world_cam = makeKeyframe(frame, std::move(frame_edges), pose.T_world_cam, &pose);
+    if (!makeKeyframe(frame, std::move(frame_edges), &pose)) {
+      pose.mapping_ms = elapsedMs(mapping_start);
+      return untrustedPose(*frame, pose);
+    }
     pose.keyframe = true;
   }
   pose.mapping_ms = elapsedMs(mapping_start);
+  remember(pose);
+  return pose;
+}
+
+FramePose Odometry::untrustedPose(const OdometryFrame& frame, FramePose pose) {
+  pose.T_world_cam = predict(frame);
+  pose.trusted = false;
+  pose.state = OdometryState::kUntrusted;
+  if (++untrusted_in_a_row_ > options_.consistency.max_untrusted_frames) {
+    pose.state = OdometryState::kLost;
+    restart();
+    relocalizing_ = true;
+  }
   remember(pose);
   return pose;
 }
@@ -365,18 +432,23 @@ std::shared_ptr<const SharedClassEdgeTest> Odometry::refineDepths(const Odometry
   return edges;
 }
 
-Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame,
-                                         std::shared_ptr<const SharedClassEdgeTest> frame_edges, Eigen::Isometry3d T_world_cam,
-                                         FramePose* pose) {
+bool Odometry::makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, std::shared_ptr<const SharedClassEdgeTest> frame_edges,
+                            FramePose* pose) {
   // One deferred optimisation at a time: the previous one is merged first, and the new keyframe,
   // tracked against the active one, moves with it.
-  if (deferred_window_.running()) T_world_cam = mergeWindow(pose) * T_world_cam;
+  if (deferred_window_.running()) pose->T_world_cam = mergeWindow(pose) * pose->T_world_cam;
   auto keyframe = std::make_shared<Keyframe>();
-  keyframe->id = next_keyframe_id_++;
-  keyframe->T_world_cam = T_world_cam;
+  keyframe->T_world_cam = pose->T_world_cam;
   keyframe->frame = frame;
+  // Its points triangulated from the tracked pose must see the map at the map's scale: a keyframe
+  // whose depths disagree with it by more than the bound would hand the next frames a new scale.
+  pose->keyframe_scale = triangulatePoints(keyframe.get(), *active_);
+  if (std::abs(std::log(pose->keyframe_scale)) > std::log1p(options_.consistency.max_keyframe_scale_change)) return false;
+  std::vector<MapPoint> from_tracked_pose = std::move(keyframe->points);
+  keyframe->points.clear();
+  keyframe->id = next_keyframe_id_++;
   keyframe->edge_test = std::move(frame_edges);
-  keyframe->measured_motion = keyframe_motion_.measure(frame->index, (active_->T_world_cam.inverse() * T_world_cam).linear());
+  keyframe->measured_motion = keyframe_motion_.measure(frame->index, (active_->T_world_cam.inverse() * keyframe->T_world_cam).linear());
   reanchor(keyframe->measured_motion, options_.keyframe_motion, active_->T_world_cam, &keyframe->T_world_cam);
   keyframes_.push_back(keyframe);
   while (static_cast<int>(keyframes_.size()) > options_.window_size) keyframes_.pop_front();
@@ -384,14 +456,18 @@ Eigen::Isometry3d Odometry::makeKeyframe(const std::shared_ptr<const OdometryFra
   // triangulated from it: points triangulated from the tracked pose agree with its error and would
   // pin it there (a yaw error leaves a left-right depth gradient that makes the next yaw error).
   if (options_.optimize_window) optimizeWindow(frame->index, pose);
-  triangulatePoints(keyframe.get(), *active_);
+  // Triangulated again unless nothing moved since (the window deferred or off, no re-anchoring).
+  const bool settled_in_line = options_.optimize_window && options_.window_delay == 0;
+  if (settled_in_line || !keyframe->T_world_cam.isApprox(pose->T_world_cam)) triangulatePoints(keyframe.get(), *active_);
+  else keyframe->points = std::move(from_tracked_pose);
   setActiveKeyframe(keyframe);
   frames_since_keyframe_ = 0;
-  return keyframe->T_world_cam;
+  pose->T_world_cam = keyframe->T_world_cam;
+  return true;
 }
 
-void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const {
-  keyframe->points = keyframe->frame->candidates;
+double Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const {
+  takeCandidates(keyframe);
   // Prior depths: the previous keyframe's measured points, seen from the new keyframe.
   const Eigen::Isometry3d T_new_old = keyframe->T_world_cam.inverse() * previous.T_world_cam;
   std::vector<DepthSample> samples;
@@ -402,10 +478,18 @@ void Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) c
     if (p.z() > 1e-3 && camera_.contains(pixel.x(), pixel.y())) samples.push_back({pixel, 1.0 / p.z()});
   }
   propagateDepths(samples, camera_, options_.depth_neighbour_radius, 1.0 / options_.initializer.median_depth, &keyframe->points);
+  std::vector<double> priors(keyframe->points.size(), 0.0);  // of the points with map points near
+  for (std::size_t i = 0; i < priors.size(); ++i)
+    if (keyframe->points[i].inverse_depth_variance < std::pow(0.75 * keyframe->points[i].inverse_depth, 2)) priors[i] = keyframe->points[i].inverse_depth;
   const PyramidLevel& host = keyframe->frame->pyramid->level(0);
   const std::shared_ptr<const SharedClassEdgeTest> previous_edges =
       previous.edge_test ? previous.edge_test : edgeTestOf(*previous.frame, options_.epipolar.edge_radius);
   measureDepths(host, {&previous.frame->pyramid->level(0), previous_edges.get(), T_new_old.inverse()}, &keyframe->points);
+  std::vector<double> ratios;  // inverse depths measured over the map's
+  for (std::size_t i = 0; i < priors.size(); ++i)
+    if (priors[i] > 0.0 && keyframe->points[i].observations > 0) ratios.push_back(keyframe->points[i].inverse_depth / priors[i]);
+  constexpr std::size_t kMinRatios = 20;  // fewer: no say on the scale
+  return ratios.size() < kMinRatios ? 1.0 : 1.0 / median(ratios);
 }
 
 void Odometry::measureDepths(const PyramidLevel& host, const EpipolarTarget& target, std::vector<MapPoint>* points) const {
@@ -448,6 +532,13 @@ void Odometry::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {
   active_ = std::move(keyframe);
   tracker_.setKeyframe(active_);
   if (keyframe_motion_.enabled()) keyframe_motion_.start(active_->id, active_->frame->index, gray8(*active_->frame));
+}
+
+void Odometry::takeCandidates(Keyframe* keyframe) const {
+  keyframe->points = keyframe->frame->candidates;
+  const int all_edges_layer = keyframe->frame->has_field ? keyframe->frame->field.all_edges_layer : -1;
+  for (MapPoint& point : keyframe->points)
+    if (point.isEdge()) point.field_layers = class_reliability_.fieldLayers(point.class_mask, all_edges_layer);
 }
 
 void Odometry::followCorners(const OdometryFrame& frame) {
@@ -500,11 +591,13 @@ Eigen::Isometry3d Odometry::predict(const OdometryFrame& frame) const {
   return T_world_last_ * se3Exp(frames * se3Log(frameMotion()));
 }
 
-Vector6d Odometry::drivingMotion() const {
+Vector6d Odometry::drivingMotion(std::size_t newest) const {
   if (driving_motions_.empty()) return Vector6d::Zero();
   // The median by length: one jump (dropped frames, a correction) does not make it.
   std::vector<const Vector6d*> sorted;
-  for (const Vector6d& motion : driving_motions_) sorted.push_back(&motion);
+  for (auto motion = driving_motions_.end() - static_cast<std::ptrdiff_t>(std::min(newest, driving_motions_.size()));
+       motion != driving_motions_.end(); ++motion)
+    sorted.push_back(&*motion);
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end(),
                    [](const Vector6d* a, const Vector6d* b) { return a->head<3>().norm() < b->head<3>().norm(); });
   return *sorted[sorted.size() / 2];

@@ -82,6 +82,11 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("keyframe_motion/reanchor_direction", &motion.reanchor_direction_deg, "deg");
   loader->load("keyframe_motion/reanchor_max_rotation", &motion.reanchor_max_rotation_deg, "deg");
   loader->load("keyframe_motion/reanchor_max_direction", &motion.reanchor_max_direction_deg, "deg");
+  loader->load("class_reliability/min_agreement", &options->class_reliability.min_agreement, "(fraction; 0: every class relied on)");
+  FrameConsistencyOptions& consistency = options->consistency;
+  loader->load("consistency/max_motion_deviation", &consistency.max_motion_deviation, "(of the usual travel per frame)");
+  loader->load("consistency/max_untrusted_frames", &consistency.max_untrusted_frames, "frames");
+  loader->load("consistency/max_keyframe_scale_change", &consistency.max_keyframe_scale_change, "(fraction)");
   return options->validate();
 }
 

@@ -36,8 +36,8 @@ std::string TrackerOptions::validate() const {
 
 void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
   keyframe_ = std::move(keyframe);
-  all_ = trackedPoints();
-  const int levels = static_cast<int>(all_.references.size());
+  setReferences();
+  const int levels = static_cast<int>(references_.size());
   const PinholeCamera& camera = keyframe_->frame->pyramid->level(0).camera;
   edge_residuals_.clear();
   for (int l = 0; l < levels; ++l) {
@@ -49,19 +49,17 @@ void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
   }
 }
 
-Tracker::TrackedPoints Tracker::trackedPoints() const {
+void Tracker::setReferences() {
   const ImagePyramid& pyramid = *keyframe_->frame->pyramid;
   const int levels = std::min(options_.levels, pyramid.levels());
-  const auto tracked = [](const MapPoint& point) { return point.hasDepth(); };
-  TrackedPoints points;
-  points.references.assign(static_cast<std::size_t>(levels), LevelReference());
+  references_.assign(static_cast<std::size_t>(levels), LevelReference());
   for (int l = 0; l < levels; ++l) {
     const PyramidLevel& level = pyramid.level(l);
     const float scale = static_cast<float>(std::ldexp(1.0, -l));
-    LevelReference& reference = points.references[static_cast<std::size_t>(l)];
+    LevelReference& reference = references_[static_cast<std::size_t>(l)];
     for (std::size_t i = 0; i < keyframe_->points.size(); i += static_cast<std::size_t>(pointStride(l))) {
       const MapPoint& point = keyframe_->points[i];
-      if (!tracked(point)) continue;
+      if (!point.hasDepth()) continue;
       const float u = toLevel(point.u, scale), v = toLevel(point.v, scale);
       if (!level.camera.contains(u, v, 3.0)) continue;
       const double z = 1.0 / point.inverse_depth;
@@ -75,11 +73,17 @@ Tracker::TrackedPoints Tracker::trackedPoints() const {
   }
   const PinholeCamera& camera = pyramid.level(0).camera;
   const double edge_weight = options_.edge_weight / (options_.edge_sigma * options_.edge_sigma);
+  edges_.clear();
   for (const MapPoint& point : keyframe_->points)
-    if (point.isEdge() && tracked(point))
-      points.edges.push_back({camera.backProject(point.u, point.v, 1.0 / point.inverse_depth), point.normal.cast<double>(),
-                              point.field_layers, edge_weight});
-  return points;
+    if (point.isEdge() && point.hasDepth())
+      edges_.push_back({camera.backProject(point.u, point.v, 1.0 / point.inverse_depth), point.normal.cast<double>(),
+                        point.field_layers, edge_weight});
+  all_layer_edges_.clear();
+  const NearestNeighborFieldView& field = keyframe_->frame->field;
+  if (keyframe_->frame->has_field && field.kind == FieldKind::kSnnf && field.all_edges_layer > 0) {
+    all_layer_edges_ = edges_;
+    for (ReferenceEdge& edge : all_layer_edges_) edge.layers = 1u << field.all_edges_layer;
+  }
 }
 
 double Tracker::evaluate(const TrackedPoints& points, int level, const Eigen::Isometry3d& T_cam_kf, const ImagePyramid& frame,
@@ -221,9 +225,9 @@ double Tracker::optimizeLevel(const TrackedPoints& points, int level, const Imag
 }
 
 TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFieldView* field,
-                              const std::vector<Eigen::Isometry3d>& guesses, double previous_inlier_ratio) const {
-  if (!keyframe_ || all_.references.empty()) return TrackingResult();
-  const TrackedPoints& points = all_;
+                              const std::vector<Eigen::Isometry3d>& guesses, double previous_inlier_ratio, EdgeLayers layers) const {
+  if (!keyframe_ || references_.empty()) return TrackingResult();
+  const TrackedPoints points{references_, layers == EdgeLayers::kAllEdges && hasAllEdgesLayer() ? all_layer_edges_ : edges_};
   const int levels = std::min({static_cast<int>(points.references.size()), frame.levels(),
                                field ? static_cast<int>(field->levels.size()) : 99});
   // The first guess (constant velocity) is taken when it tracks well. Otherwise the other guesses

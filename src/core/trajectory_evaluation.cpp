@@ -268,4 +268,29 @@ ErrorStatistics straightLineErrors(const std::vector<Eigen::Vector3d>& positions
   return errorStatistics(errors);
 }
 
+std::string keyframeScaleChanges(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est,
+                                 const std::vector<std::size_t>& keyframes, double min_gt_travel_m, KeyframeScaleChanges* result) {
+  KeyframeScaleChanges changes;
+  double previous_scale = 0.0;
+  for (std::size_t k = 1; k < keyframes.size(); ++k) {
+    const std::size_t from = keyframes[k - 1], to = keyframes[k];
+    if (to <= from || to >= gt.size() || to >= est.size()) return "keyframe pair indices must increase within the pairs";
+    const double travelled = (gt[to] - gt[from]).norm();
+    if (travelled < min_gt_travel_m) continue;
+    const double scale = (est[to] - est[from]).norm() / travelled;
+    ++changes.intervals;
+    if (previous_scale > 0.0 && scale > 0.0) {
+      const double change = std::max(scale / previous_scale, previous_scale / scale) - 1.0;
+      if (change > changes.largest_change) {
+        changes.largest_change = change;
+        changes.at_pair = from;
+      }
+    }
+    previous_scale = scale;
+  }
+  if (changes.intervals < 2) return "fewer than two keyframe intervals in which the camera travelled";
+  *result = changes;
+  return "";
+}
+
 }  // namespace semantic_edge_vo

@@ -11,11 +11,12 @@ std::string TrajectoryEvaluationOptions::validate() const {
   std::ostringstream out;
   if (rpe_delta_frames < 1) out << "rpe_delta_frames must be >= 1 (got " << rpe_delta_frames << ")";
   else if (!(min_gt_translation_m >= 0.0)) out << "min_gt_translation_m must be >= 0 (got " << min_gt_translation_m << ")";
+  else if (!(min_keyframe_travel_m > 0.0)) out << "min_keyframe_travel_m must be > 0 (got " << min_keyframe_travel_m << ")";
   return out.str();
 }
 
 std::string evaluateTrajectory(const PosePairs& pairs, const TrajectoryEvaluationOptions& options,
-                               TrajectoryEvaluation* evaluation) {
+                               const std::vector<std::size_t>& keyframe_frames, TrajectoryEvaluation* evaluation) {
   const std::string options_error = options.validate();
   if (!options_error.empty()) return options_error;
   const std::vector<Eigen::Vector3d> gt = positionsOf(pairs.gt), est = positionsOf(pairs.est);
@@ -36,6 +37,15 @@ std::string evaluateTrajectory(const PosePairs& pairs, const TrajectoryEvaluatio
   result.drift_unavailable = kittiDrift(pairs.gt, pairs.est, 1.0, options.kitti_drift, &result.drift_as_given);
   if (result.drift_unavailable.empty())
     result.drift_unavailable = kittiDrift(pairs.gt, pairs.est, scale, options.kitti_drift, &result.drift_sim3_scale);
+  // The keyframes' pair indices: those of their ground-truth frames among the pairs.
+  std::vector<std::size_t> keyframes;
+  for (std::size_t i = 0, k = 0; i < pairs.gt.size() && k < keyframe_frames.size(); ++i) {
+    while (k < keyframe_frames.size() && keyframe_frames[k] < pairs.groundTruthFrame(i)) ++k;
+    if (k < keyframe_frames.size() && keyframe_frames[k] == pairs.groundTruthFrame(i)) keyframes.push_back(i);
+  }
+  result.keyframe_scale_unavailable = keyframe_frames.empty() ? "no keyframes given"
+                                                              : keyframeScaleChanges(gt, est, keyframes, options.min_keyframe_travel_m,
+                                                                                     &result.keyframe_scale);
   *evaluation = std::move(result);
   return "";
 }

@@ -145,6 +145,37 @@ std::string readTimes(const std::string& path, std::vector<double>* stamps) {
   return "";
 }
 
+std::string readKeyframeFrames(const std::string& path, std::vector<std::size_t>* frames) {
+  std::ifstream file(path);
+  if (!file) return path + ": cannot open for reading";
+  std::vector<std::size_t> result;
+  std::size_t flag_column = 0;  // 0: one frame number a line
+  std::string line;
+  for (int line_number = 1; std::getline(file, line); ++line_number) {
+    std::istringstream words(line);
+    std::vector<std::string> columns;
+    for (std::string word; words >> word;) columns.push_back(word);
+    if (columns.empty()) continue;
+    if (columns[0][0] == '#') {
+      if (columns[0] == "#") columns.erase(columns.begin());
+      else columns[0].erase(0, 1);
+      for (std::size_t c = 0; c < columns.size(); ++c)
+        if (columns[c] == "keyframe") flag_column = c;
+      continue;
+    }
+    if (columns.size() <= flag_column) return located(path, line_number, "fewer columns than the header names");
+    char* end = nullptr;
+    const long frame = std::strtol(columns[0].c_str(), &end, 10);
+    if (*end != '\0' || frame < 0) return located(path, line_number, "'" + columns[0] + "' is not a frame number");
+    if (flag_column > 0 && columns[flag_column] != "1") continue;
+    if (!result.empty() && static_cast<std::size_t>(frame) <= result.back()) return located(path, line_number, "frame numbers must increase");
+    result.push_back(static_cast<std::size_t>(frame));
+  }
+  if (file.bad()) return path + ": read error";
+  *frames = std::move(result);
+  return "";
+}
+
 std::string detectTrajectoryFormat(const std::string& path, TrajectoryFormat* format) {
   std::ifstream file(path);
   if (!file) return path + ": cannot open for reading";

@@ -40,11 +40,13 @@ const char* const kUsage = R"(usage: evaluate_trajectory GT EST [options]
   --rpe-delta N      RPE frame delta (default 1)
   --first-frame N    evaluate the pairs from ground-truth frame N on (default 0: all); e.g. 12 for
                      KITTI 06, whose first 12 ground-truth poses are extrapolated, not measured
+  --keyframes FILE   the estimate's keyframes: run_sequence's timing.txt, or one frame number a line;
+                     adds the largest change of scale between consecutive keyframes
 )";
 
 struct Arguments {
   std::string gt_path, est_path, format = "auto", output = ".", bag_topic = "/odometry", bag_extrinsic = "optical";
-  std::string gt_times, associate = "auto";
+  std::string gt_times, associate = "auto", keyframes;
   double max_time_diff = 0.01, est_time_offset = 0.0;
   int first_frame = 0;
   sevo::TrajectoryEvaluationOptions options;
@@ -72,6 +74,7 @@ std::string parseArguments(int argc, char** argv, Arguments* args) {
     else if (flag == "--bag-topic") args->bag_topic = value;
     else if (flag == "--bag-extrinsic") args->bag_extrinsic = value, error = oneOf({"optical", "identity"});
     else if (flag == "--gt-times") args->gt_times = value;
+    else if (flag == "--keyframes") args->keyframes = value;
     else if (flag == "--associate") args->associate = value, error = oneOf({"auto", "index", "stamps"});
     else if (flag == "--max-time-diff") error = sevo::parseNumber(flag, value, &args->max_time_diff);
     else if (flag == "--est-time-offset") error = sevo::parseNumber(flag, value, &args->est_time_offset);
@@ -204,10 +207,12 @@ int main(int argc, char** argv) {
   sevo::EvaluationSources sources;
   sevo::PosePairs pairs;
   sevo::TrajectoryEvaluation evaluation;
+  std::vector<std::size_t> keyframes;
   error = readInputs(args, &gt, &est, &sources);
+  if (error.empty() && !args.keyframes.empty()) error = sevo::readKeyframeFrames(args.keyframes, &keyframes);
   if (error.empty()) error = associate(args, gt, est, &pairs, &sources.association);
   if (error.empty()) error = keepFromFirstFrame(args, &pairs, &sources.association);
-  if (error.empty()) error = sevo::evaluateTrajectory(pairs, args.options, &evaluation);
+  if (error.empty()) error = sevo::evaluateTrajectory(pairs, args.options, keyframes, &evaluation);
   if (!error.empty()) {
     std::cerr << "evaluate_trajectory: " << error << "\n";
     return 1;

@@ -66,6 +66,7 @@ class EpipolarEdgeClasses : public ::testing::Test {
     point_.u = static_cast<float>(columnOf(0.6, 0.0));
     point_.v = 100.0f;
     point_.class_mask = 1u << 1;
+    point_.field_layers = point_.class_mask;  // its class is relied on: matched in its own layer
     point_.normal = Eigen::Vector2f(1.0f, 0.0f);
     point_.inverse_depth = 1.0 / kDepth;
     point_.inverse_depth_variance = 0.03 * 0.03;

@@ -92,7 +92,7 @@ PosePairs pairsOf(const Poses& gt, const Poses& est) { return {gt, est, {}}; }
 
 TrajectoryEvaluation evaluate(const Poses& gt, const Poses& est) {
   TrajectoryEvaluation evaluation;
-  EXPECT_EQ(evaluateTrajectory(pairsOf(gt, est), TrajectoryEvaluationOptions(), &evaluation), "");
+  EXPECT_EQ(evaluateTrajectory(pairsOf(gt, est), TrajectoryEvaluationOptions(), {}, &evaluation), "");
   return evaluation;
 }
 
@@ -227,7 +227,7 @@ TEST(TrajectoryEvaluation, ShortSequencesSayWhatIsNotAvailable) {
   const std::string markdown = evaluationMarkdown({}, e, TrajectoryEvaluationOptions());
   EXPECT_NE(markdown.find("Not available: the ground truth is 11 m long"), std::string::npos);
   TrajectoryEvaluation unused;
-  EXPECT_NE(evaluateTrajectory(pairsOf(straightLine(2, 1.0), straightLine(2, 1.0)), {}, &unused).find("at least 3"),
+  EXPECT_NE(evaluateTrajectory(pairsOf(straightLine(2, 1.0), straightLine(2, 1.0)), {}, {}, &unused).find("at least 3"),
             std::string::npos);
 }
 
@@ -354,6 +354,27 @@ TEST(TrajectoryEvaluation, KittiRotationDriftOfAConstantYawError) {
   EXPECT_NEAR(e.drift_as_given.rotation_deg_per_100m, 0.01 * frames_per_100m, 0.01 * frames_per_100m * 0.03);
   EXPECT_NEAR(e.frame_to_frame.mean_rotation_error_deg, 0.01, 1e-5);  // 1e-5: the ground truth's 1e-7 rad
   EXPECT_LT(e.frame_to_frame.mean_direction_error_deg, 1e-9);  // the motions' translations are untouched
+}
+
+TEST(TrajectoryEvaluation, KeyframeScaleChangeOfAnEstimateThatShrinks) {
+  // 1 m a frame, keyframes every 3 frames; from frame 12 on the estimate travels 0.6 m a frame.
+  const Poses gt = straightLine(30, 1.0);
+  Poses est = gt;
+  for (int i = 13; i < 30; ++i) est[static_cast<std::size_t>(i)].translation().z() = 12.0 + 0.6 * (i - 12);
+  const std::vector<std::size_t> keyframes = {0, 3, 6, 9, 12, 15, 18, 21, 24, 27};
+  KeyframeScaleChanges changes;
+  ASSERT_EQ(keyframeScaleChanges(positionsOf(gt), positionsOf(est), keyframes, 0.2, &changes), "");
+  EXPECT_EQ(changes.intervals, 9u);
+  EXPECT_NEAR(changes.largest_change, 1.0 / 0.6 - 1.0, 1e-9);
+  EXPECT_EQ(changes.at_pair, 12u) << "the interval 9-12 at scale 1, then 12-15 at 0.6";
+  // Through evaluateTrajectory, with the keyframes given as frame numbers.
+  TrajectoryEvaluation evaluation;
+  ASSERT_EQ(evaluateTrajectory(pairsOf(gt, est), TrajectoryEvaluationOptions(), keyframes, &evaluation), "");
+  EXPECT_EQ(evaluation.keyframe_scale_unavailable, "");
+  EXPECT_NEAR(evaluation.keyframe_scale.largest_change, 1.0 / 0.6 - 1.0, 1e-9);
+  // A standing car has no scale: intervals without travel are left out.
+  const Poses standing = straightLine(30, 0.0);
+  EXPECT_NE(keyframeScaleChanges(positionsOf(standing), positionsOf(standing), keyframes, 0.2, &changes), "");
 }
 
 TEST(TrajectoryEvaluation, FrameToFrameDirectionErrorOfAKnownTilt) {

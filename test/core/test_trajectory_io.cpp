@@ -122,6 +122,20 @@ TEST_F(TrajectoryIo, TimesWriteReadRoundTrip) {
   for (std::size_t i = 0; i < read.size(); ++i) EXPECT_NEAR(read[i], stamps[i], 1e-6);
 }
 
+TEST_F(TrajectoryIo, ReadsKeyframesFromATimingTableOrAList) {
+  std::vector<std::size_t> keyframes;
+  ASSERT_EQ(readKeyframeFrames(file("timing.txt", "# frame tracking_ms trusted state keyframe guess\n"
+                                                  "0 1.5 1 tracking 1 0\n1 2.0 1 tracking 0 0\n2 2.5 0 untrusted 0 0\n"
+                                                  "3 1.0 1 tracking 1 2\n"),
+                               &keyframes),
+            "");
+  EXPECT_EQ(keyframes, (std::vector<std::size_t>{0, 3}));
+  ASSERT_EQ(readKeyframeFrames(file("list.txt", "4\n9\n\n12\n"), &keyframes), "");
+  EXPECT_EQ(keyframes, (std::vector<std::size_t>{4, 9, 12}));
+  EXPECT_NE(readKeyframeFrames(file("bad.txt", "4\n2\n"), &keyframes).find("bad.txt:2:"), std::string::npos);
+  EXPECT_NE(readKeyframeFrames(file("word.txt", "four\n"), &keyframes).find("word.txt:1:"), std::string::npos);
+}
+
 TEST_F(TrajectoryIo, DetectsTheFormatFromTheColumns) {
   TrajectoryFormat format = TrajectoryFormat::kTum;
   ASSERT_EQ(detectTrajectoryFormat(file("k.txt", "# c\n1 0 0 0 0 1 0 0 0 0 1 0\n"), &format), "");
