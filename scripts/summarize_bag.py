@@ -6,7 +6,7 @@ import sys
 
 import rosbag
 
-STATES = {0: "INITIALIZING", 1: "TRACKING", 2: "LOST", 3: "RECOVERED"}
+STATES = {0: "INITIALIZING", 1: "TRACKING", 2: "LOST", 3: "RECOVERED", 4: "UNTRUSTED"}
 
 
 def main(path):

@@ -25,6 +25,9 @@ class ParameterSource {
 
   /// The full name for logs (the resolved ROS name, or file:section/name).
   virtual std::string resolve(const std::string& name) const = 0;
+  /// Every name set in this source, relative ("canny/blur_sigma"; a list is one name), so that a
+  /// name no option reads (a typo) can be reported.
+  virtual std::vector<std::string> names() const = 0;
   /// Values that were set but unreadable, one per line; empty when all were fine.
   const std::string& error() const { return error_; }
 

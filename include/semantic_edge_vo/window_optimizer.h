@@ -10,8 +10,8 @@
 namespace semantic_edge_vo {
 
 struct WindowOptimizerOptions {
-  int keyframes = 7;               ///< newest keyframes optimised together (the oldest of them is held fixed)
-  int max_iterations = 10;         ///< Levenberg-Marquardt iterations per solve
+  int keyframes = 5;               ///< newest keyframes optimised together (the oldest of them is held fixed)
+  int max_iterations = 4;          ///< Levenberg-Marquardt iterations per solve (few: the window keeps up live)
   int point_stride = 2;            ///< every n-th point of each host keyframe takes part
   double photometric_sigma = 4.0;  ///< gray levels / px (gradient magnitude)
   double photometric_huber = 9.0;  ///< gray levels / px

@@ -26,6 +26,7 @@ class YamlParameterSource : public ParameterSource {
   bool get(const std::string& name, std::vector<double>* value) const override;
   bool get(const std::string& name, std::vector<SemanticClass>* value) const override;
   std::string resolve(const std::string& name) const override;
+  std::vector<std::string> names() const override;
 
   YamlParameterSource(const YamlParameterSource& other);
 

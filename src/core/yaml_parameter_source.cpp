@@ -45,7 +45,22 @@ YAML::Node lookUp(const YAML::Node& root, const std::string& name) {
   return node;
 }
 
+/// Appends the names of the values below `node` (a map's keys joined by '/'; a list is one value).
+void collectNames(const YAML::Node& node, const std::string& prefix, std::vector<std::string>* names) {
+  if (!node.IsMap()) {
+    if (!prefix.empty()) names->push_back(prefix);
+    return;
+  }
+  for (const auto& entry : node) collectNames(entry.second, prefix + (prefix.empty() ? "" : "/") + entry.first.as<std::string>(), names);
+}
+
 }  // namespace
+
+std::vector<std::string> YamlParameterSource::names() const {
+  std::vector<std::string> names;
+  collectNames(node_->root, "", &names);
+  return names;
+}
 
 YamlParameterSource YamlParameterSource::section(const std::string& name) const {
   auto node = std::make_unique<Node>();

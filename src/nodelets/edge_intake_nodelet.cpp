@@ -23,6 +23,7 @@
 #include "semantic_edge_vo/ros/frame_pairing.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
 #include "semantic_edge_vo/intake_options_loading.h"
+#include "semantic_edge_vo/live_options.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
 #include "semantic_edge_vo/options_loading.h"
 #include "semantic_edge_vo/ros/rectifier.h"
@@ -40,55 +41,34 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     rejections_ = std::make_unique<InputRejections>(getName());
     const RosParameterSource parameters(private_node);
     ParameterLoader loader(parameters);
-    int queue_size = 5;
-    loader.load("queue_size", &queue_size, "messages");
-    std::string transport = "raw", class_format = "probabilities", edge_source = "canny", on_missing = "canny";
-    double class_wait = 0.5;
-    int max_pending = 10;
-    loader.load("transport", &transport, "(raw | compressed)");
-    loader.load("time_jump_back", &time_jump_back_, "s");
-    loader.load("rectify", &rectify_, "(undistort with camera_info's D, K, R, P)");
-    std::string error = loadSemanticEdgeOptions(&loader, &options_);
-    if (error.empty() && options_.mode != IntakeMode::kCanny) {
-      loader.load("class_format", &class_format, "(probabilities | labels | bitmask)");
-      loader.load("edge_source", &edge_source, "(canny | topic; fused)");
-      loader.load("class_wait", &class_wait, "s");
-      loader.load("on_missing_classes", &on_missing, "(drop | canny)");
-      loader.load("max_pending", &max_pending, "frames");
-      error = loadClassTable(&loader, &classes_);
-    } else {
-      classes_ = ClassTable::singleEdgeClass();
-    }
+    IntakeStreamOptions stream;
+    std::string error = loadIntakeStreamOptions(&loader, &stream);
+    if (error.empty()) error = loadSemanticEdgeOptions(&loader, &options_);
+    if (error.empty()) error = loadClassTable(&loader, &classes_);
+    if (options_.mode == IntakeMode::kCanny) classes_ = ClassTable::singleEdgeClass();
     PointSamplerOptions sampler_options;
     if (error.empty()) error = loadPointSamplerOptions(&loader, &sampler_options);
     sampler_ = PointSampler(sampler_options);
+    tracer_.init(node, &loader, getName());
     NODELET_INFO_STREAM("parameters:" << loader.summary() << "\n  classes = " << classes_.size());
+    warnUnknownParameters(loader, getName());
     if (error.empty()) error = parameters.error();
-    if (error.empty() && queue_size < 1) error = "queue_size must be >= 1";
-    if (error.empty() && !(time_jump_back_ > 0.0)) error = "time_jump_back must be > 0 s";
-    if (error.empty() && transport != "raw" && transport != "compressed")
-      error = "transport must be raw or compressed (got '" + transport + "')";
-    if (error.empty() && !parseClassEvidenceForm(class_format, &class_form_))
-      error = "class_format must be probabilities, labels or bitmask (got '" + class_format + "')";
-    if (error.empty() && edge_source != "canny" && edge_source != "topic")
-      error = "edge_source must be canny or topic (got '" + edge_source + "')";
-    if (error.empty() && on_missing != "drop" && on_missing != "canny")
-      error = "on_missing_classes must be drop or canny (got '" + on_missing + "')";
-    if (error.empty() && !(class_wait > 0.0 && max_pending >= 1)) error = "need class_wait > 0 s and max_pending >= 1";
+    if (error.empty()) parseClassEvidenceForm(stream.class_format, &class_form_);  // validated by the loader
     if (!error.empty()) {
       NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
       return;
     }
-    fallback_to_canny_ = on_missing == "canny";
+    rectify_ = stream.rectify;
+    time_jump_back_ = stream.time_jump_back;
+    fallback_to_canny_ = stream.on_missing_classes == "canny";
     stamp_order_ = StampOrder(time_jump_back_);
-    const bool need_edges = options_.mode == IntakeMode::kFused && edge_source == "topic";
-    pairing_ = std::make_unique<FramePairing>(need_edges, class_wait, static_cast<std::size_t>(max_pending));
-    tracer_.init(node, private_node, getName());
+    const bool need_edges = options_.mode == IntakeMode::kFused && stream.edge_source == "topic";
+    pairing_ = std::make_unique<FramePairing>(need_edges, stream.class_wait, static_cast<std::size_t>(stream.max_pending));
     frame_publisher_ = node.advertise<SemanticEdgeFrame>("edge_frame", 5);
     image_transport::ImageTransport image_transport(node);
     edge_image_publisher_ = image_transport.advertise("edge_image", 1);
-    const auto queue = static_cast<std::uint32_t>(queue_size);
-    if (transport == "raw") {
+    const auto queue = static_cast<std::uint32_t>(stream.queue_size);
+    if (stream.transport == "raw") {
       camera_subscriber_ = image_transport.subscribeCamera("image", queue, &EdgeIntakeNodelet::onImage, this);
     } else {
       // The compressed stream beside the resolved (remapped) image topic, as image_transport names it.
@@ -102,7 +82,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     const char* class_topic = options_.mode == IntakeMode::kFused ? "class_probabilities" : "class_edge_probabilities";
     class_subscriber_ = node.subscribe(class_topic, queue, &EdgeIntakeNodelet::onClasses, this);
     if (need_edges) edge_subscriber_ = node.subscribe("edge_probability", queue, &EdgeIntakeNodelet::onEdges, this);
-    expiry_timer_ = node.createWallTimer(ros::WallDuration(std::min(0.05, class_wait / 4)), &EdgeIntakeNodelet::onTimer, this);
+    expiry_timer_ = node.createWallTimer(ros::WallDuration(std::min(0.05, stream.class_wait / 4)), &EdgeIntakeNodelet::onTimer, this);
   }
 
   /// Empty when the pair can be used, else the reason's name; `detail` says what was expected.
@@ -339,9 +319,9 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
   ros::WallTimer expiry_timer_;
   std::mutex mutex_;  // guards everything below and serializes all callbacks (frames leave in stamp order)
   std::unique_ptr<FramePairing> pairing_;
-  bool rectify_ = false;  // parameter
+  bool rectify_ = false;  // IntakeStreamOptions::rectify
   Rectifier rectifier_;   // maps of the last calibration (rectify_ only)
-  double time_jump_back_ = 1.0;  // s
+  double time_jump_back_ = 1.0;  // s, IntakeStreamOptions::time_jump_back
   StampOrder stamp_order_{time_jump_back_};  // of the accepted images
 };
 

@@ -19,6 +19,7 @@
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
+#include "semantic_edge_vo/live_options.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
 #include "semantic_edge_vo/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
@@ -53,25 +54,18 @@ class MappingNodelet : public nodelet::Nodelet {
     ros::NodeHandle& private_node = getPrivateNodeHandle();
     const RosParameterSource parameters(private_node);
     ParameterLoader loader(parameters);
-    loader.load("odom_frame", &odom_frame_);
-    loader.load("base_frame", &base_frame_);
-    loader.load("queue_size", &queue_size_, "messages");
-    loader.load("voxel_size", &voxel_size_, "map units (m up to the monocular scale)");
-    loader.load("max_map_points", &max_map_points_, "points");
-    loader.load("max_path_poses", &max_path_poses_, "poses");
-    std::string error = loadClassTable(&loader, &classes_);
+    std::string error = loadMapOutputOptions(&loader, &options_);
+    if (error.empty()) error = loadClassTable(&loader, &classes_);
+    tracer_.init(node, &loader, getName());
     NODELET_INFO_STREAM("parameters:" << loader.summary() << "\n  classes: " << classes_.size());
+    warnUnknownParameters(loader, getName());
     if (error.empty()) error = parameters.error();
-    if (error.empty() && (queue_size_ < 1 || max_map_points_ < 1 || max_path_poses_ < 1))
-      error = "queue_size, max_map_points and max_path_poses must be >= 1";
-    if (error.empty() && !(voxel_size_ > 0.0)) error = "voxel_size must be > 0";
     if (!error.empty()) {
       NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
       return;
     }
     rejections_ = std::make_unique<InputRejections>(getName());
-    extrinsic_ = std::make_unique<CameraExtrinsic>(base_frame_, 0.0);
-    tracer_.init(node, private_node, getName());
+    extrinsic_ = std::make_unique<CameraExtrinsic>(options_.frames.base_frame, 0.0);
     cloud_publisher_ = node.advertise<sensor_msgs::PointCloud2>("semantic_edge_map", 1, /*latch=*/true);
     path_publisher_ = node.advertise<nav_msgs::Path>("path", 1);
     tracked_subscriber_ = node.subscribe("tracked_frame", 100, &MappingNodelet::onTrackedFrame, this);  // late poses come in bursts
@@ -91,7 +85,7 @@ class MappingNodelet : public nodelet::Nodelet {
   void enqueue(Job job) {
     {
       std::lock_guard<std::mutex> lock(queue_mutex_);
-      if (static_cast<int>(queue_.size()) >= queue_size_) {
+      if (static_cast<int>(queue_.size()) >= options_.queue_size) {
         queue_.pop_front();
         rejections_->reject("oldest queued message", "queue_full", "mapping is behind; raise queue_size or lower the rate");
       }
@@ -124,11 +118,11 @@ class MappingNodelet : public nodelet::Nodelet {
     const Eigen::Isometry3d T_base_cam = extrinsic_->baseFromCamera(camera_frame_);
     geometry_msgs::PoseStamped pose;
     pose.header.stamp = tracked.header.stamp;
-    pose.header.frame_id = odom_frame_;
+    pose.header.frame_id = options_.frames.odom_frame;
     pose.pose = toPoseMsg(baseInOdom(fromPoseMsg(tracked.pose_world_camera), T_base_cam));
     path_.header = pose.header;
     path_.poses.push_back(pose);
-    if (static_cast<int>(path_.poses.size()) > max_path_poses_) path_.poses.erase(path_.poses.begin());
+    if (static_cast<int>(path_.poses.size()) > options_.max_path_poses) path_.poses.erase(path_.poses.begin());
     path_publisher_.publish(path_);
   }
 
@@ -181,12 +175,12 @@ class MappingNodelet : public nodelet::Nodelet {
   }
 
   void commit(const MapPointOut& point) {
-    const Eigen::Vector3i cell = (point.position / static_cast<float>(voxel_size_)).array().floor().cast<int>();
+    const Eigen::Vector3i cell = (point.position / static_cast<float>(options_.voxel_size)).array().floor().cast<int>();
     const std::uint64_t key = (static_cast<std::uint64_t>(cell.x() & 0x1FFFFF) << 42) |
                               (static_cast<std::uint64_t>(cell.y() & 0x1FFFFF) << 21) | static_cast<std::uint64_t>(cell.z() & 0x1FFFFF);
     if (!voxels_.emplace(key, point).second) return;
     voxel_order_.push_back(key);
-    while (static_cast<int>(voxel_order_.size()) > max_map_points_) {  // bounded: the oldest go first
+    while (static_cast<int>(voxel_order_.size()) > options_.max_map_points) {  // bounded: the oldest go first
       voxels_.erase(voxel_order_.front());
       voxel_order_.pop_front();
     }
@@ -195,7 +189,7 @@ class MappingNodelet : public nodelet::Nodelet {
   void publishCloud(const std::vector<MapPointOut>& points, const ros::Time& stamp) {
     auto cloud = boost::make_shared<sensor_msgs::PointCloud2>();
     cloud->header.stamp = stamp;
-    cloud->header.frame_id = odom_frame_;
+    cloud->header.frame_id = options_.frames.odom_frame;
     sensor_msgs::PointCloud2Modifier modifier(*cloud);
     modifier.setPointCloud2Fields(5, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32,
                                   "z", 1, sensor_msgs::PointField::FLOAT32, "label", 1, sensor_msgs::PointField::UINT32,
@@ -219,12 +213,7 @@ class MappingNodelet : public nodelet::Nodelet {
   }
 
   // Parameters (read in onInit, constant afterwards).
-  std::string odom_frame_ = "odom";
-  std::string base_frame_ = "base_link";
-  int queue_size_ = 20;
-  double voxel_size_ = 0.1;
-  int max_map_points_ = 200000;
-  int max_path_poses_ = 10000;
+  MapOutputOptions options_;
   ClassTable classes_;
 
   std::unique_ptr<InputRejections> rejections_;

@@ -20,14 +20,15 @@ class NearestNeighborFieldNodelet : public nodelet::Nodelet {
     const RosParameterSource parameters(getPrivateNodeHandle());
     ParameterLoader loader(parameters);
     std::string error = loadFieldOptions(&loader, &options_);
+    tracer_.init(node, &loader, getName());
     NODELET_INFO_STREAM("parameters:" << loader.summary());
+    warnUnknownParameters(loader, getName());
     if (error.empty()) error = parameters.error();
     if (!error.empty()) {
       NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
       return;
     }
     rejections_ = std::make_unique<InputRejections>(getName());
-    tracer_.init(node, getPrivateNodeHandle(), getName());
     field_publisher_ = node.advertise<NearestNeighborField>("nn_field", 5);
     frame_subscriber_ = node.subscribe("edge_frame", 5, &NearestNeighborFieldNodelet::onFrame, this);
   }

@@ -15,6 +15,7 @@
 #include "semantic_edge_vo/segmenter.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
 #include "semantic_edge_vo/intake_options_loading.h"
+#include "semantic_edge_vo/live_options.h"
 #include "semantic_edge_vo/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
 
@@ -31,14 +32,12 @@ class SegmenterNodelet : public nodelet::Nodelet {
     ParameterLoader loader(parameters);
     SegmenterOptions options;
     std::string error = loadSegmenterOptions(&loader, &options);
-    loader.load("output_bits", &output_bits_, "(32: 32FC<C> probabilities | 8: 8UC<C>, probability x 255)");
-    loader.load("log_every", &log_every_, "frames");
+    if (error.empty()) error = loadSegmenterOutputOptions(&loader, &output_);
     ClassTable classes;
     if (error.empty()) error = loadClassTable(&loader, &classes);
     NODELET_INFO_STREAM("parameters:" << loader.summary() << "\n  classes = " << classes.size());
+    warnUnknownParameters(loader, getName());
     if (error.empty()) error = parameters.error();
-    if (error.empty() && output_bits_ != 32 && output_bits_ != 8) error = "output_bits must be 32 or 8";
-    if (error.empty() && log_every_ < 1) error = "log_every must be >= 1";
     if (error.empty()) {
       segmenter_ = std::make_unique<Segmenter>(options, classes.size());
       error = segmenter_->error();
@@ -74,9 +73,9 @@ class SegmenterNodelet : public nodelet::Nodelet {
     out->header = image->header;
     out->width = image->width;
     out->height = image->height;
-    const int depth = output_bits_ == 32 ? CV_32F : CV_8U;
-    out->encoding = (output_bits_ == 32 ? "32FC" : "8UC") + std::to_string(classes_);
-    out->step = image->width * static_cast<std::uint32_t>(classes_ * output_bits_ / 8);
+    const int depth = output_.output_bits == 32 ? CV_32F : CV_8U;
+    out->encoding = (output_.output_bits == 32 ? "32FC" : "8UC") + std::to_string(classes_);
+    out->step = image->width * static_cast<std::uint32_t>(classes_ * output_.output_bits / 8);
     out->data.resize(static_cast<std::size_t>(out->step) * out->height);
     cv::Mat probabilities(static_cast<int>(out->height), static_cast<int>(out->width), CV_MAKETYPE(depth, classes_), out->data.data());
     double ms = 0.0;
@@ -91,7 +90,7 @@ class SegmenterNodelet : public nodelet::Nodelet {
     time.data = static_cast<float>(ms);
     time_publisher_.publish(time);
     times_.push_back(ms);
-    if (static_cast<int>(times_.size()) >= log_every_) {
+    if (static_cast<int>(times_.size()) >= output_.log_every) {
       std::nth_element(times_.begin(), times_.begin() + static_cast<std::ptrdiff_t>(times_.size() / 2), times_.end());
       NODELET_INFO_STREAM("segmentation: median " << times_[times_.size() / 2] << " ms per frame over the last "
                                                   << times_.size() << " frames");
@@ -102,8 +101,7 @@ class SegmenterNodelet : public nodelet::Nodelet {
   std::unique_ptr<Segmenter> segmenter_;
   std::unique_ptr<InputRejections> rejections_;
   int classes_ = 0;
-  int output_bits_ = 32;
-  int log_every_ = 100;
+  SegmenterOutputOptions output_;
   std::vector<double> times_;  // ms of the frames since the last log (the image callback is serialized)
   ros::Publisher probability_publisher_, time_publisher_;
   image_transport::Subscriber image_subscriber_;

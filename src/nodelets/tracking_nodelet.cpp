@@ -23,6 +23,7 @@
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
+#include "semantic_edge_vo/live_options.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
 #include "semantic_edge_vo/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
@@ -38,23 +39,19 @@ class TrackingNodelet : public nodelet::Nodelet {
     ros::NodeHandle& node = getNodeHandle();
     const RosParameterSource parameters(getPrivateNodeHandle());
     ParameterLoader loader(parameters);
-    loader.load("odom_frame", &odom_frame_);
-    loader.load("base_frame", &base_frame_);
-    loader.load("publish_tf", &publish_tf_);
-    loader.load("publish_default_camera_tf", &publish_default_camera_tf_);
     loader.load("use_edges", &use_edges_);
-    std::string error = loadOdometryOptions(&loader, &options_);
+    std::string error = loadTfOptions(&loader, &tf_);
+    if (error.empty()) error = loadOdometryOptions(&loader, &options_);
+    tracer_.init(node, &loader, getName());
     NODELET_INFO_STREAM("parameters:" << loader.summary());
+    warnUnknownParameters(loader, getName());
     if (error.empty()) error = parameters.error();
-    if (error.empty() && (odom_frame_.empty() || base_frame_.empty() || odom_frame_ == base_frame_))
-      error = "odom_frame and base_frame must be non-empty and differ";
     if (!error.empty()) {
       NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
       return;
     }
     rejections_ = std::make_unique<InputRejections>(getName());
-    extrinsic_ = std::make_unique<CameraExtrinsic>(base_frame_, 0.0);
-    tracer_.init(node, getPrivateNodeHandle(), getName());
+    extrinsic_ = std::make_unique<CameraExtrinsic>(tf_.frames.base_frame, 0.0);
     // The initialisation releases the poses of every frame that waited for it at once (up to
     // initializer/max_frames + 1): the queues hold such a burst several times over.
     const std::uint32_t burst = static_cast<std::uint32_t>(4 * (options_.initializer.max_frames + 1));
@@ -149,20 +146,20 @@ class TrackingNodelet : public nodelet::Nodelet {
     const std::string& camera_frame = header->second.frame_id;
     bool extrinsic_from_tf = false;
     const Eigen::Isometry3d T_base_cam = extrinsic_->baseFromCamera(camera_frame, &extrinsic_from_tf);
-    if (!extrinsic_from_tf && publish_default_camera_tf_ && camera_frame != announced_camera_frame_)
+    if (!extrinsic_from_tf && tf_.publish_default_camera_tf && camera_frame != announced_camera_frame_)
       publishDefaultCameraTf(camera_frame, stamp, T_base_cam);
     const Eigen::Isometry3d T_odom_base = baseInOdom(pose.T_world_cam, T_base_cam);
-    if (publish_tf_) {
+    if (tf_.publish_tf) {
       geometry_msgs::TransformStamped transform = tf2::eigenToTransform(T_odom_base);
       transform.header.stamp = stamp;
-      transform.header.frame_id = odom_frame_;
-      transform.child_frame_id = base_frame_;
+      transform.header.frame_id = tf_.frames.odom_frame;
+      transform.child_frame_id = tf_.frames.base_frame;
       tf_broadcaster_.sendTransform(transform);
     }
     auto odometry = boost::make_shared<nav_msgs::Odometry>();
     odometry->header.stamp = stamp;
-    odometry->header.frame_id = odom_frame_;
-    odometry->child_frame_id = base_frame_;
+    odometry->header.frame_id = tf_.frames.odom_frame;
+    odometry->child_frame_id = tf_.frames.base_frame;
     odometry->pose.pose = toPoseMsg(T_odom_base);
     // Monocular: position is up to an unknown scale; the covariance says we do not know it.
     for (int i = 0; i < 6; ++i) odometry->pose.covariance[static_cast<std::size_t>(i * 7)] = i < 3 ? 1e3 : 1e-2;
@@ -186,9 +183,10 @@ class TrackingNodelet : public nodelet::Nodelet {
     status->scale_is_arbitrary = true;
     if (pose) {
       status->state = pose->state == OdometryState::kTracking ? (pose->recovered ? TrackingStatus::RECOVERED : TrackingStatus::TRACKING)
-                      : pose->state == OdometryState::kLost ? TrackingStatus::LOST
-                                                            : TrackingStatus::INITIALIZING;
-      status->pose_published = pose->trusted && publish_tf_;
+                      : pose->state == OdometryState::kLost      ? TrackingStatus::LOST
+                      : pose->state == OdometryState::kUntrusted ? TrackingStatus::UNTRUSTED
+                                                                 : TrackingStatus::INITIALIZING;
+      status->pose_published = pose->trusted && tf_.publish_tf;
       status->keyframe_id = static_cast<std::uint32_t>(std::max(0, pose->keyframe_id));
       status->num_points = static_cast<std::uint32_t>(pose->tracking.points_in_view);
       status->num_edge_points = static_cast<std::uint32_t>(pose->tracking.edge_residuals);
@@ -236,19 +234,16 @@ class TrackingNodelet : public nodelet::Nodelet {
   void publishDefaultCameraTf(const std::string& camera_frame, const ros::Time& stamp, const Eigen::Isometry3d& T_base_cam) {
     geometry_msgs::TransformStamped transform = tf2::eigenToTransform(T_base_cam);
     transform.header.stamp = stamp;
-    transform.header.frame_id = base_frame_;
+    transform.header.frame_id = tf_.frames.base_frame;
     transform.child_frame_id = camera_frame;
     static_broadcaster_.sendTransform(transform);
     announced_camera_frame_ = camera_frame;
-    NODELET_INFO_STREAM("no " << base_frame_ << " -> " << camera_frame
+    NODELET_INFO_STREAM("no " << tf_.frames.base_frame << " -> " << camera_frame
                               << " transform on tf: publishing the optical-rotation default as a static transform");
   }
 
   // Parameters (read in onInit, constant afterwards).
-  std::string odom_frame_ = "odom";
-  std::string base_frame_ = "base_link";
-  bool publish_tf_ = true;
-  bool publish_default_camera_tf_ = true;
+  TfOptions tf_;
   bool use_edges_ = true;  ///< false: photometric-only odometry (the ablation's "none")
   OdometryOptions options_;
 

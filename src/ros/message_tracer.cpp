@@ -4,8 +4,8 @@
 
 namespace semantic_edge_vo {
 
-void MessageTracer::init(ros::NodeHandle& node, const ros::NodeHandle& private_node, const std::string& nodelet_name) {
-  private_node.param("trace_messages", enabled_, false);
+void MessageTracer::init(ros::NodeHandle& node, ParameterLoader* loader, const std::string& nodelet_name) {
+  loader->load("trace_messages", &enabled_);
   nodelet_name_ = nodelet_name;
   if (enabled_) publisher_ = node.advertise<MessageTrace>("message_trace", 200);
 }

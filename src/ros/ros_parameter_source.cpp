@@ -1,8 +1,18 @@
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
 
+#include <ros/console.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 
 namespace semantic_edge_vo {
+
+std::vector<std::string> RosParameterSource::names() const {
+  std::vector<std::string> all, names;
+  if (!node_.getParamNames(all)) return names;
+  const std::string prefix = node_.getNamespace() + "/";
+  for (const std::string& name : all)
+    if (name.compare(0, prefix.size(), prefix) == 0) names.push_back(name.substr(prefix.size()));
+  return names;
+}
 
 bool RosParameterSource::get(const std::string& name, std::vector<SemanticClass>* value) const {
   XmlRpc::XmlRpcValue list;
@@ -36,6 +46,11 @@ bool RosParameterSource::get(const std::string& name, std::vector<SemanticClass>
   }
   *value = std::move(classes);
   return true;
+}
+
+void warnUnknownParameters(const ParameterLoader& loader, const std::string& nodelet_name) {
+  const std::string unknown = loader.unknownNames();
+  if (!unknown.empty()) ROS_WARN_STREAM(nodelet_name << ": unknown parameters, ignored (no option has these names): " << unknown);
 }
 
 }  // namespace semantic_edge_vo

@@ -10,15 +10,13 @@
 #include "semantic_edge_vo/class_table.h"
 #include "semantic_edge_vo/command_line.h"
 #include "semantic_edge_vo/host_cpu.h"
-#include "semantic_edge_vo/intake_options_loading.h"
+#include "semantic_edge_vo/graph_config.h"
 #include "semantic_edge_vo/keyframe_depth_report.h"
 #include "semantic_edge_vo/odometry.h"
-#include "semantic_edge_vo/options_loading.h"
 #include "semantic_edge_vo/progress_bar.h"
 #include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/sequence_input.h"
 #include "semantic_edge_vo/trajectory_io.h"
-#include "semantic_edge_vo/yaml_parameter_source.h"
 
 using namespace semantic_edge_vo;
 
@@ -51,38 +49,8 @@ void stopOnError(const std::string& error, std::optional<KeyframeDepthReport>* r
   report->reset();
 }
 
-/// Everything the run is configured with: built-in defaults, then the config file, then the flags.
-struct RunOptions {
-  FrameBuilderOptions frame;
-  OdometryOptions odometry;
-  SegmenterOptions segmenter;
-  ClassTable classes = ClassTable::cityscapes();
-  std::string summary;  ///< every option with its value, as read from the config file or defaulted
-};
-
-/// Reads the nodelets' blocks of a config file, under the names the nodelets use (no file: every
-/// option at its default, still listed in the summary).
-std::string loadConfig(const std::string& path, RunOptions* options) {
-  const YamlParameterSource file(path);
-  if (!file.error().empty()) return file.error();
-  const YamlParameterSource intake = file.section("edge_intake"), segmenter = file.section("segmenter"),
-                            field = file.section("nearest_neighbor_field"), tracking = file.section("tracking");
-  ParameterLoader intake_loader(intake), segmenter_loader(segmenter), field_loader(field), tracking_loader(tracking);
-  std::string error = loadSemanticEdgeOptions(&intake_loader, &options->frame.intake);
-  if (error.empty()) error = loadPointSamplerOptions(&intake_loader, &options->frame.sampler);
-  if (error.empty()) error = loadClassTable(&intake_loader, &options->classes);
-  if (error.empty()) error = loadSegmenterOptions(&segmenter_loader, &options->segmenter);
-  if (error.empty()) error = loadFieldOptions(&field_loader, &options->frame.field);
-  tracking_loader.load("use_edges", &options->frame.use_field);
-  if (error.empty()) error = loadOdometryOptions(&tracking_loader, &options->odometry);
-  for (const ParameterSource* source : {&intake, &segmenter, &field, &tracking})
-    if (error.empty()) error = source->error();
-  options->summary = intake_loader.summary() + segmenter_loader.summary() + field_loader.summary() + tracking_loader.summary();
-  return error;
-}
-
 /// The command line's choices over the config's.
-std::string applyFlags(const Arguments& args, RunOptions* options) {
+std::string applyFlags(const Arguments& args, GraphConfig* options) {
   if (!args.intake.empty() && !parseIntakeMode(args.intake, &options->frame.intake.mode))
     return "--intake must be canny, fused or semantic_edges (got '" + args.intake + "')";
   if (!args.field.empty()) {
@@ -101,8 +69,8 @@ const char* const kUsage = R"(usage: run_sequence --sequence DIR --output OUT [-
            [--intake canny|fused|semantic_edges] [--segmenter-model PATH] [--config FILE] [--frames N] [--quiet]
 Runs the odometry offline, deterministically, on a KITTI odometry folder (image_0/, calib.txt,
 times.txt) or a synthetic sequence. --config reads a file laid out like config/semantic_edge_vo.yaml
-(the nodelets' parameters: its edge_intake, segmenter, nearest_neighbor_field and tracking blocks);
-the flags override it; without it every option has its built-in default. Writes OUT/poses_kitti.txt
+(the nodelets' parameters; a key no option reads is an error); the flags override it; without it
+every option has its default, which the shipped config equals. Writes OUT/poses_kitti.txt
 (one line per input frame, camera-to-world of camera 0, frame 0 at identity), OUT/poses_tum.txt,
 OUT/timing.txt (per frame and stage, ms), OUT/parameters.txt (every option used) and prints a summary.
 On a synthetic sequence with true depths (DIR/depth/) it also checks every keyframe's point depths
@@ -114,9 +82,9 @@ against them: OUT/keyframe_depths.txt and a summary line.
 int main(int argc, char** argv) {
   if (printUsageIfAsked(argc, argv, kUsage)) return 0;
   Arguments args;
-  RunOptions options;
+  GraphConfig options;  // built-in defaults, then the config file, then the flags
   std::string error = parse(argc, argv, &args);
-  if (error.empty()) error = loadConfig(args.config, &options);
+  if (error.empty()) error = loadGraphConfig(args.config, &options);
   if (error.empty()) error = applyFlags(args, &options);
   if (!error.empty()) {
     std::fprintf(stderr, "run_sequence: %s\n%s", error.c_str(), kUsage);
@@ -184,8 +152,8 @@ int main(int argc, char** argv) {
 
   Trajectory trajectory;
   std::ostringstream timing;
-  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe guess inlier_ratio\n";
-  int trusted = 0, keyframes = 0, lost = 0;
+  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe guess inlier_ratio motion_deviation keyframe_scale\n";
+  int trusted = 0, keyframes = 0, lost = 0, untrusted = 0;
   std::vector<double> totals;
   for (const FramePose& pose : poses) {
     trajectory.poses.push_back(pose.T_world_cam);
@@ -195,10 +163,11 @@ int main(int argc, char** argv) {
     totals.push_back(total);
     timing << pose.index << ' ' << segmenter_ms[i] << ' ' << intake_ms[i] << ' ' << pose.tracking_ms << ' ' << pose.mapping_ms
            << ' ' << total << ' ' << pose.window_ms << ' ' << pose.tracking.iterations << ' ' << pose.trusted << ' ' << toString(pose.state) << ' ' << pose.keyframe
-           << ' ' << pose.tracking.guess << ' ' << pose.tracking.inlierRatio() << '\n';
+           << ' ' << pose.tracking.guess << ' ' << pose.tracking.inlierRatio() << ' ' << pose.motion_deviation << ' ' << pose.keyframe_scale << '\n';
     trusted += pose.trusted;
     keyframes += pose.keyframe;
     lost += pose.state == OdometryState::kLost;
+    untrusted += pose.state == OdometryState::kUntrusted;
   }
   for (const std::string& written :
        {writeKittiPoses(args.output + "/poses_kitti.txt", trajectory), writeTumTrajectory(args.output + "/poses_tum.txt", trajectory),
@@ -216,10 +185,10 @@ int main(int argc, char** argv) {
       if (!ran_only || pose.*ms > 0.0) values.push_back(pose.*ms);
     return values.empty() ? 0.0 : median(values);
   };
-  std::printf("run_sequence: %d frames, %d with a trusted pose, %d lost, "
+  std::printf("run_sequence: %d frames, %d with a trusted pose, %d untrusted, %d lost, "
               "%d keyframes; median per frame %.1f ms (intake %.1f, tracking %.1f, mapping %.1f); windowed optimisation "
               "%.1f ms each, %s\n",
-              frames, trusted, lost, keyframes, median(totals), median(intake_ms), stage(&FramePose::tracking_ms, false),
+              frames, trusted, untrusted, lost, keyframes, median(totals), median(intake_ms), stage(&FramePose::tracking_ms, false),
               stage(&FramePose::mapping_ms, false), stage(&FramePose::window_ms, true),
               options.odometry.window_delay > 0 ? "on its own thread (not in the total)" : "in line (in mapping)");
   std::printf("run_sequence: throughput %.1f frames/s (wall time of intake + odometry over all frames, %.1f s; "

@@ -8,14 +8,12 @@
 
 #include "semantic_edge_vo/class_table.h"
 #include "semantic_edge_vo/command_line.h"
-#include "semantic_edge_vo/intake_options_loading.h"
+#include "semantic_edge_vo/graph_config.h"
 #include "semantic_edge_vo/kitti_sequence.h"
-#include "semantic_edge_vo/options_loading.h"
 #include "semantic_edge_vo/progress_bar.h"
 #include "semantic_edge_vo/robust_statistics.h"
 #include "semantic_edge_vo/semantic_map_files.h"
 #include "semantic_edge_vo/sequence_input.h"
-#include "semantic_edge_vo/yaml_parameter_source.h"
 
 using namespace semantic_edge_vo;
 
@@ -48,27 +46,16 @@ std::string parse(int argc, char** argv, Arguments* args) {
   return {};
 }
 
-/// The segmenter's options and the class table: built-in (ENet, Cityscapes), then the config file's.
-std::string loadConfig(const std::string& path, SegmenterOptions* segmenter, ClassTable* classes) {
-  const YamlParameterSource file(path);
-  if (!file.error().empty()) return file.error();
-  const YamlParameterSource segmenter_block = file.section("segmenter"), intake_block = file.section("edge_intake");
-  ParameterLoader segmenter_loader(segmenter_block), intake_loader(intake_block);
-  std::string error = loadSegmenterOptions(&segmenter_loader, segmenter);
-  if (error.empty()) error = loadClassTable(&intake_loader, classes);
-  if (error.empty()) error = segmenter_block.error();
-  return error.empty() ? intake_block.error() : error;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   if (printUsageIfAsked(argc, argv, kUsage)) return 0;
   Arguments args;
-  SegmenterOptions segmenter;
-  ClassTable classes = ClassTable::cityscapes();
+  GraphConfig config;  // the segmenter's options and the class table: built-in (ENet, Cityscapes), then the config file's
   std::string error = parse(argc, argv, &args);
-  if (error.empty() && !args.config.empty()) error = loadConfig(args.config, &segmenter, &classes);
+  if (error.empty()) error = loadGraphConfig(args.config, &config);
+  SegmenterOptions& segmenter = config.segmenter;
+  const ClassTable& classes = config.classes;
   if (!error.empty()) {
     std::fprintf(stderr, "segment_sequence: %s\n%s", error.c_str(), kUsage);
     return 2;

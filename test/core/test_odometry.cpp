@@ -23,15 +23,6 @@ namespace {
 constexpr int kFrames = 50;
 constexpr int kEvent = 24;  ///< the frame blinded or restarted at: well after the first initialisation (about 5 frames)
 
-/// The shipped config's windowed optimisation (the built-in default is the slower offline one).
-OdometryOptions shippedOdometryOptions() {
-  OdometryOptions options;
-  options.window_optimizer.keyframes = 5;
-  options.window_optimizer.max_iterations = 5;
-  options.window_optimizer.point_stride = 6;
-  return options;
-}
-
 struct DriveResult {
   std::map<int, FramePose> poses;  ///< by frame index, every frame once
   std::vector<Eigen::Isometry3d> truth;
@@ -47,6 +38,8 @@ enum class Event {
   kBlindedWhileDriving,
   kFramesDropped,
   kBlindedForGood,
+  kRepeatedFrame,   ///< frame kEvent shows frame kEvent - 1 again (a driver that sent the same image twice)
+  kFrameFromLater,  ///< frame kEvent shows frame kEvent + kLaterFrames (a frame out of order)
 };
 
 constexpr int kStopFrames = 120;       ///< the drive with a stop: to the light (braking from about 15 m), 3 s there, and on
@@ -55,7 +48,8 @@ constexpr double kStopDuration = 3.0;  ///< s
 constexpr int kDroppedAtStart = 10;    ///< frames of the start after the stop that never arrive (1 s: 0.9 m)
 constexpr int kBlindedFrames = 5;      ///< a van crossing in front: half a second without a view
 constexpr int kBlindedIntoStop = 10;   ///< frames after the car came to rest that the van arrives
-constexpr int kDroppedWhileDriving = 3;  ///< frames from kEvent on that never arrive: the next moved four frames' travel
+constexpr int kDroppedWhileDriving = 3;
+constexpr int kLaterFrames = 30;       ///< how far ahead the out-of-order frame is  ///< frames from kEvent on that never arrive: the next moved four frames' travel
 
 /// Frames of the drive blinded from the first (-1 for none; the stop's first standing frame not
 /// known yet) and how many.
@@ -84,7 +78,7 @@ DriveResult drive(Event event) {
   }
   synthetic::SyntheticSequence sequence(options);
   const FrameBuilder builder(FrameBuilderOptions{}, sequence.camera(), ClassTable::cityscapes().names());
-  OdometryOptions odometry_options = shippedOdometryOptions();
+  OdometryOptions odometry_options;  // the defaults: the shipped config
   Odometry odometry(odometry_options, sequence.camera());
   DriveResult run;
   // As in the tracking nodelet, the odometry numbers the frames it receives: dropped frames are seen
@@ -107,6 +101,8 @@ DriveResult drive(Event event) {
     if (frame.speed == 0.0 && first_standing < 0) first_standing = i;
     const Blinding blinding = blindingOf(event, first_standing);
     if (blinding.first >= 0 && i >= blinding.first && i < blinding.first + blinding.count) frame.gray.setTo(128);
+    if (i == kEvent && event == Event::kRepeatedFrame) frame.gray = sequence.frame(i - 1).gray;
+    if (i == kEvent && event == Event::kFrameFromLater) frame.gray = sequence.frame(i + kLaterFrames).gray;
     if (event == Event::kStopThenFramesDropped && last_standing >= 0 && i > last_standing && i <= last_standing + kDroppedAtStart)
       continue;
     if (event == Event::kFramesDropped && i >= kEvent && i < kEvent + kDroppedWhileDriving) continue;
@@ -173,6 +169,30 @@ TEST(Odometry, ABlindedFrameIsLostThenTrackingResumesWithOdomContinuous) {
   EXPECT_EQ(run.poses.at(kEvent).state, OdometryState::kLost);
   expectLostOnlyWhileBlinded(run, kEvent, 1);
   expectContinuousAcross(run, "a blinded frame");
+}
+
+/// The frame at kEvent shows another moment of the drive: it is not trusted and makes no keyframe;
+/// the next frame is tracked on the map as before, odom continuous.
+void expectTheWrongFrameIsNotTrusted(Event event, const char* what) {
+  const DriveResult run = drive(event);
+  ASSERT_EQ(run.poses.size(), static_cast<std::size_t>(kFrames)) << "every frame gets a pose";
+  const FramePose& wrong = run.poses.at(kEvent);
+  std::printf("odometry, %s: state %s, motion %.2f of the usual travel away from the prediction\n", what, toString(wrong.state),
+              wrong.motion_deviation);
+  EXPECT_FALSE(wrong.trusted);
+  EXPECT_FALSE(wrong.keyframe);
+  for (int i = 0; i < kFrames; ++i)
+    if (i != kEvent) EXPECT_TRUE(run.poses.at(i).trusted) << "frame " << i;
+  EXPECT_EQ(run.poses.at(kEvent + 1).keyframe_id, run.poses.at(kEvent - 1).keyframe_id) << "tracked on against the keyframe before";
+  expectContinuousAcross(run, what);
+}
+
+TEST(Odometry, ARepeatedFrameIsNotTrustedAndMakesNoKeyframe) {
+  expectTheWrongFrameIsNotTrusted(Event::kRepeatedFrame, "a frame repeated");
+}
+
+TEST(Odometry, AFrameThirtyFramesAheadIsNotTrustedAndMakesNoKeyframe) {
+  expectTheWrongFrameIsNotTrusted(Event::kFrameFromLater, "a frame from 30 frames later");
 }
 
 TEST(Odometry, ARestartStartsANewMapWhereTheOldOneWas) {

@@ -1,8 +1,9 @@
+#include <algorithm>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/intake_options_loading.h"
+#include "semantic_edge_vo/graph_config.h"
 #include "semantic_edge_vo/options_loading.h"
 #include "semantic_edge_vo/yaml_parameter_source.h"
 
@@ -75,31 +76,38 @@ TEST(YamlParameterSource, ReadsAClassTableAndRefusesAMalformedOne) {
   EXPECT_NE(bad.error().find("classes[0]"), std::string::npos) << bad.error();
 }
 
-// The shipped config sets every option the loaders read (none falls back to a silent default),
-// and every value in it is readable and valid. run_sequence --config reads it like the nodelets.
-TEST(YamlParameterSource, ShippedConfigSetsEveryOptionValidly) {
-  const YamlParameterSource file(SEVO_SOURCE_DIR "/config/semantic_edge_vo.yaml");
-  ASSERT_EQ(file.error(), "");
-  const YamlParameterSource intake = file.section("edge_intake"), segmenter = file.section("segmenter"),
-                            field = file.section("nearest_neighbor_field"), tracking = file.section("tracking");
-  ParameterLoader intake_loader(intake), segmenter_loader(segmenter), field_loader(field), tracking_loader(tracking);
-  SemanticEdgeOptions edges;
-  PointSamplerOptions sampler;
-  ClassTable classes;
-  SegmenterOptions segmentation;
-  FieldOptions field_options;
-  OdometryOptions odometry;
-  EXPECT_EQ(loadSemanticEdgeOptions(&intake_loader, &edges), "");
-  EXPECT_EQ(loadPointSamplerOptions(&intake_loader, &sampler), "");
-  EXPECT_EQ(loadClassTable(&intake_loader, &classes), "");
-  EXPECT_EQ(loadSegmenterOptions(&segmenter_loader, &segmentation), "");
-  EXPECT_EQ(loadFieldOptions(&field_loader, &field_options), "");
-  EXPECT_EQ(loadOdometryOptions(&tracking_loader, &odometry), "");
-  for (const ParameterLoader* loader : {&intake_loader, &segmenter_loader, &field_loader, &tracking_loader})
-    EXPECT_EQ(loader->summary().find("(default)"), std::string::npos) << loader->summary();
-  for (const ParameterSource* source : {&intake, &segmenter, &field, &tracking}) EXPECT_EQ(source->error(), "");
-  EXPECT_EQ(classes.size(), 19);
-  EXPECT_EQ(classes[13].name, "car");
+TEST(YamlParameterSource, NamesEveryValueOnceAListIncluded) {
+  const YamlParameterSource file(writeYaml("tracking:\n  tracker: {levels: 3, edge_huber: 1.5}\n  list: [1, 2]\nmapping: {voxel_size: 0.1}\n"));
+  std::vector<std::string> names = file.names();
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"mapping/voxel_size", "tracking/list", "tracking/tracker/edge_huber", "tracking/tracker/levels"}));
+  EXPECT_EQ(file.section("tracking").names().size(), 3u);
+}
+
+// One source of defaults: the shipped config sets every option the graph reads (none falls back
+// to a silent default), every value is valid, and each equals the option's built-in default, so
+// run_sequence without --config, the launch file and the tests run the same odometry.
+TEST(GraphConfig, ShippedConfigSetsEveryOptionToItsDefault) {
+  GraphConfig config;
+  ASSERT_EQ(loadGraphConfig(SEVO_SOURCE_DIR "/config/semantic_edge_vo.yaml", &config), "");
+  EXPECT_EQ(config.summary.find("(default)"), std::string::npos) << config.summary;
+  std::string changed;
+  for (const std::string& line : config.changed_from_defaults) changed += "\n  " + line;
+  EXPECT_EQ(changed, "") << "the shipped config differs from the built-in defaults";
+  EXPECT_EQ(config.classes.names(), ClassTable::cityscapes().names());
+}
+
+TEST(GraphConfig, AnUnknownKeyOrBlockIsNamed) {
+  GraphConfig config;
+  const std::string typo = loadGraphConfig(writeYaml("tracking:\n  tracker: {edge_hubr: 2.0}\n"), &config);
+  EXPECT_NE(typo.find("tracking/tracker/edge_hubr"), std::string::npos) << typo;
+  const std::string block = loadGraphConfig(writeYaml("trackng:\n  keyframe_flow: 50.0\n"), &config);
+  EXPECT_NE(block.find("trackng"), std::string::npos) << block;
+  EXPECT_EQ(loadGraphConfig(writeYaml("tracking:\n  keyframe_flow: 50.0\n"), &config), "");
+  EXPECT_DOUBLE_EQ(config.odometry.keyframe_flow, 50.0);
+  ASSERT_EQ(config.changed_from_defaults.size(), 1u);
+  EXPECT_NE(config.changed_from_defaults[0].find("tracking/keyframe_flow = 50"), std::string::npos);
+  EXPECT_EQ(loadGraphConfig("", &config), "");
 }
 
 }  // namespace

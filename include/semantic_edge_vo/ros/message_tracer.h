@@ -4,6 +4,8 @@
 #include <ros/node_handle.h>
 #include <ros/publisher.h>
 
+#include "semantic_edge_vo/parameter_loader.h"
+
 namespace semantic_edge_vo {
 
 /// With the parameter `trace_messages` (default false), reports the address of every data message a
@@ -11,7 +13,8 @@ namespace semantic_edge_vo {
 /// passing inside one manager can be checked from outside. Costs nothing when disabled.
 class MessageTracer {
  public:
-  void init(ros::NodeHandle& node, const ros::NodeHandle& private_node, const std::string& nodelet_name);
+  /// Reads `trace_messages` with the nodelet's other parameters.
+  void init(ros::NodeHandle& node, ParameterLoader* loader, const std::string& nodelet_name);
   void published(const ros::Publisher& publisher, const void* message, const ros::Time& stamp) const {
     if (enabled_) report(publisher.getTopic(), "publish", message, stamp);
   }

@@ -1,6 +1,7 @@
 #pragma once
 #include <ros/node_handle.h>
 
+#include "semantic_edge_vo/parameter_loader.h"
 #include "semantic_edge_vo/parameter_source.h"
 
 namespace semantic_edge_vo {
@@ -18,6 +19,7 @@ class RosParameterSource : public ParameterSource {
   bool get(const std::string& name, std::vector<double>* value) const override { return read(name, value); }
   bool get(const std::string& name, std::vector<SemanticClass>* value) const override;
   std::string resolve(const std::string& name) const override { return node_.resolveName(name); }
+  std::vector<std::string> names() const override;
 
  private:
   template <typename T>
@@ -29,5 +31,9 @@ class RosParameterSource : public ParameterSource {
 
   ros::NodeHandle node_;
 };
+
+/// Warns once, naming them, of the nodelet's private parameters that no option read: a typo would
+/// otherwise silently run the default.
+void warnUnknownParameters(const ParameterLoader& loader, const std::string& nodelet_name);
 
 }  // namespace semantic_edge_vo
