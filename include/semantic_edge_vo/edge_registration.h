@@ -15,18 +15,9 @@ namespace semantic_edge_vo {
 struct ReferenceEdge {
   Eigen::Vector3d point;        ///< in the reference optical frame, metres
   Eigen::Vector2d normal;       ///< unit gradient direction in the reference image
-  std::uint32_t layers = 1;     ///< its SNNF layers (MapPoint::field_layers; see ClassAssociation)
+  std::uint32_t layers = 1;     ///< its SNNF layers (MapPoint::field_layers): it meets the nearest edge of each
   double weight = 1.0;
 };
-
-/// How an SNNF edge pixel of several classes is associated (paper III-B's soft association).
-enum class ClassAssociation {
-  kNearest,  ///< with the nearest edge of any of its classes: one residual, as the window associates
-  kEach,     ///< with the nearest edge of each of its classes: one residual per class (Eq. 10 summed per class)
-  kSplit,    ///< as kEach, the pixel's weight split evenly over its classes
-};
-const char* toString(ClassAssociation association);
-bool parseClassAssociation(const std::string& text, ClassAssociation* association);
 
 struct EdgeRegistrationOptions {
   int level = 0;               ///< pyramid level of the target field used
@@ -34,7 +25,6 @@ struct EdgeRegistrationOptions {
   double huber_threshold = 2.0;  ///< pixels of the level
   double min_step = 1e-7;        ///< stop when the update's norm falls below this (twist units)
   double initial_lambda = 1e-4;  ///< Levenberg-Marquardt damping, relative to diag(H)
-  ClassAssociation class_association = ClassAssociation::kEach;  ///< SNNF pixels of several classes
 
   std::string validate() const;
 };
@@ -57,7 +47,7 @@ struct EdgeRegistrationResult {
 
 /// Edge-only registration (paper III-A/B): reference edges with depth are projected into the target
 /// frame, each is associated with the nearest edge of its field layer (ANNF: all edges; ONNF: the bin
-/// of its warped gradient direction; SNNF: its classes, see ClassAssociation), and the point-to-tangent distances
+/// of its warped gradient direction; SNNF: each of its classes, one residual per class as in Eq. 10), and the point-to-tangent distances
 /// are minimised under a Huber norm by iteratively reweighted Levenberg-Marquardt on SE(3), with the
 /// association recomputed every iteration (ICP).
 class EdgeRegistration {

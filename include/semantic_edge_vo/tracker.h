@@ -19,7 +19,6 @@ struct TrackerOptions {
   double edge_huber = 1.5;           ///< Huber threshold of point-to-tangent residuals, px of the level
   double edge_sigma = 1.0;           ///< their scale, px of the level
   double edge_weight = 2.0;          ///< weight of edge residuals (paper III-C: more in tracking than in mapping)
-  ClassAssociation class_association = ClassAssociation::kEach;  ///< SNNF edge points of several classes
   /// The constant-velocity guess is taken when its inlier ratio is at least this fraction of the
   /// previous frame's (the ratio itself varies from scene to scene: 0.6-0.9 on KITTI).
   double accept_inlier_ratio = 0.85;

@@ -6,25 +6,6 @@
 
 namespace semantic_edge_vo {
 
-const char* toString(ClassAssociation association) {
-  switch (association) {
-    case ClassAssociation::kNearest: return "nearest";
-    case ClassAssociation::kEach: return "each";
-    case ClassAssociation::kSplit: return "split";
-  }
-  return "unknown";
-}
-
-bool parseClassAssociation(const std::string& text, ClassAssociation* association) {
-  for (ClassAssociation a : {ClassAssociation::kNearest, ClassAssociation::kEach, ClassAssociation::kSplit}) {
-    if (text == toString(a)) {
-      *association = a;
-      return true;
-    }
-  }
-  return false;
-}
-
 std::string EdgeRegistrationOptions::validate() const {
   std::ostringstream error;
   if (level < 0) error << "level must be >= 0 (got " << level << ")";
@@ -84,9 +65,6 @@ double EdgeRegistration::evaluate(const std::vector<ReferenceEdge>& edges, std::
                                   std::vector<EdgeResidual>* out) const {
   out->clear();
   const double unmatched_cost = huberCost(field.truncation_radius, options_.huber_threshold);
-  const bool semantic = field.kind == FieldKind::kSnnf;
-  const bool nearest_class = semantic && options_.class_association == ClassAssociation::kNearest;
-  const bool split = semantic && options_.class_association == ClassAssociation::kSplit;
   double cost = 0.0;
   std::vector<int> layers;
   for (std::size_t i = begin; i < end; ++i) {
@@ -94,28 +72,19 @@ double EdgeRegistration::evaluate(const std::vector<ReferenceEdge>& edges, std::
     layersOf(edge, T_target_ref, field, &layers);
     if (layers.empty()) continue;
     const Eigen::Vector3d p_target = T_target_ref * edge.point;
-    // One association per layer, or one for the nearest of the pixel's classes.
-    const std::size_t associations = nearest_class ? 1 : layers.size();
-    const double weight = split ? edge.weight / static_cast<double>(layers.size()) : edge.weight;
+    // One association per layer: a pixel of several classes meets the nearest edge of each (Eq. 10).
+    const double weight = edge.weight;
     if (!(p_target.z() > 1e-3)) {
-      cost += static_cast<double>(associations) * weight * unmatched_cost;
+      cost += static_cast<double>(layers.size()) * weight * unmatched_cost;
       continue;
     }
     const Eigen::Vector2d projected = camera_.project(p_target);
     const float x = static_cast<float>(projected.x()), y = static_cast<float>(projected.y());
-    FieldMatch best;
-    bool found = false;
     for (int layer : layers) {
       FieldMatch match;
       const bool matched = field.nearest(options_.level, layer, x, y, &match);
-      if (!nearest_class) {
-        cost += matched ? addResidual(weight, p_target, projected, match, out) : weight * unmatched_cost;
-      } else if (matched && (!found || match.distance < best.distance)) {
-        best = match;
-        found = true;
-      }
+      cost += matched ? addResidual(weight, p_target, projected, match, out) : weight * unmatched_cost;
     }
-    if (nearest_class) cost += found ? addResidual(weight, p_target, projected, best, out) : weight * unmatched_cost;
   }
   return cost;
 }

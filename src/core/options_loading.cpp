@@ -38,10 +38,6 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("tracker/photometric_huber", &tracker.photometric_huber, "gray levels/px");
   loader->load("tracker/edge_huber", &tracker.edge_huber, "px of each level");
   loader->load("tracker/edge_weight", &tracker.edge_weight, "");
-  std::string association = toString(tracker.class_association);
-  loader->load("tracker/class_association", &association, "(nearest | each | split)");
-  if (!parseClassAssociation(association, &tracker.class_association))
-    return "tracker/class_association must be nearest, each or split (got '" + association + "')";
   loader->load("tracker/accept_inlier_ratio", &tracker.accept_inlier_ratio, "");
   loader->load("tracker/min_inlier_ratio", &tracker.min_inlier_ratio, "");
   loader->load("tracker/forward_motion/sigma", &tracker.forward_motion.sigma_deg, "deg (0: off)");

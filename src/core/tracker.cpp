@@ -44,7 +44,6 @@ void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
     EdgeRegistrationOptions edge_options;
     edge_options.level = l;
     edge_options.huber_threshold = options_.edge_huber;
-    edge_options.class_association = options_.class_association;
     edge_residuals_.emplace_back(camera, edge_options);
   }
 }

@@ -4,7 +4,7 @@
 // the same edges, one pyramid level, the same Huber kernel.
 //   convergence_benchmark --output DIR [--scene city|village|highway] [--pairs P] [--trials N]
 //       [--seed S] [--reference-edges N] [--truncation PX] [--label-confusion X] [--edge-blur X]
-//       [--missed-edges X] [--spurious-edges X] [--class-association nearest|each|split]
+//       [--missed-edges X] [--spurious-edges X]
 // Prints the tables; writes DIR/convergence.json and the plots DIR/convergence.png (translation)
 // and DIR/convergence_rotation.png.
 #include <cstdio>
@@ -33,7 +33,6 @@ struct Arguments {
   int pairs = 3, trials = 20, reference_edges = 3000;
   std::uint64_t seed = 1;
   float truncation = 150.0f;
-  ClassAssociation class_association = ClassAssociation::kEach;
   synthetic::NetworkNoiseOptions noise;
 };
 
@@ -57,8 +56,6 @@ bool parse(int argc, char** argv, Arguments* args, std::string* error) {
       double truncation = args->truncation;
       *error = parseNumber(flag, value, &truncation);
       args->truncation = static_cast<float>(truncation);
-    } else if (flag == "--class-association") {
-      if (!parseClassAssociation(value, &args->class_association)) *error = "--class-association must be nearest, each or split (got '" + value + "')";
     } else if (!synthetic::parseNoiseFlag(flag, value, &args->noise, error)) *error = "unknown flag " + flag;
     if (!error->empty()) return false;
   }
@@ -153,9 +150,9 @@ void writePlot(const std::string& path, const std::vector<ConvergenceCurve>& cur
 const char* const kUsage =
     "usage: convergence_benchmark --output DIR [--scene city|village|highway] [--pairs P] [--trials N]\n"
     "         [--seed S] [--reference-edges N] [--truncation PX] [--label-confusion X] [--edge-blur X]\n"
-    "         [--missed-edges X] [--spurious-edges X] [--class-association nearest|each|split]\n"
+    "         [--missed-edges X] [--spurious-edges X]\n"
     "         (defaults: city, 3 pairs, 20 trials, seed 1, 3000 reference edges, truncation 150 px,\n"
-    "         no network noise, each)\n";
+    "         no network noise)\n";
 
 int main(int argc, char** argv) {
   if (printUsageIfAsked(argc, argv, kUsage)) return 0;
@@ -172,7 +169,6 @@ int main(int argc, char** argv) {
   options.seed = args.seed;
   options.field.truncation_radius = args.truncation;
   options.registration.max_iterations = 30;
-  options.registration.class_association = args.class_association;
   error = sequence_options.validate();
   if (error.empty()) error = options.validate();
   if (!error.empty()) {
@@ -197,7 +193,7 @@ int main(int argc, char** argv) {
   std::ostringstream description;
   description << "scene " << synthetic::toString(args.scene) << ", seed " << args.seed << ", " << args.pairs << " frame pairs, "
               << args.trials << " trials per displacement and pair, single level, Huber " << options.registration.huber_threshold
-              << " px, truncation " << args.truncation << " px, SNNF classes " << toString(args.class_association) << ", success below " << options.success_translation_m << " m and "
+              << " px, truncation " << args.truncation << " px, success below " << options.success_translation_m << " m and "
               << options.success_rotation_deg << " deg; network noise: label confusion " << args.noise.label_confusion
               << ", edge blur " << args.noise.edge_blur << ", missed " << args.noise.missed_edges << ", spurious "
               << args.noise.spurious_edges;

@@ -44,8 +44,8 @@ TEST(EdgeRegistration, JacobianMatchesNumericDifferentiation) {
 }
 
 // An edge pixel labelled with three classes, projected 1 px right of a class-0 edge and 5 px left of
-// a class-1 edge; class 2 has no edge near.
-TEST(EdgeRegistration, PixelOfSeveralClassesMeetsEachOfThemOrTheNearest) {
+// a class-1 edge; class 2 has no edge near: one residual per class it meets (Eq. 10).
+TEST(EdgeRegistration, PixelOfSeveralClassesMeetsEachOfThem) {
   const PinholeCamera camera = kittiCamera();
   EdgeSet target;
   target.push_back(600.0f, 200.0f, 1.0f, 0.0f, 1.0f, 1u << 0);
@@ -59,39 +59,14 @@ TEST(EdgeRegistration, PixelOfSeveralClassesMeetsEachOfThemOrTheNearest) {
   const Eigen::Isometry3d identity = Eigen::Isometry3d::Identity();
   EdgeRegistrationOptions options;
   options.huber_threshold = 10.0;  // quadratic over these distances: cost = weight * r^2 / 2
-  options.class_association = ClassAssociation::kNearest;
   std::vector<EdgeResidual> residuals;
-  const double nearest_cost = EdgeRegistration(camera, options).evaluate(edges, data.view(), identity, &residuals);
-  ASSERT_EQ(residuals.size(), 1u);
-  EXPECT_NEAR(residuals[0].value, 1.0, 1e-4);
-  EXPECT_NEAR(nearest_cost, 2.0 * 0.5, 1e-3);
-
-  options.class_association = ClassAssociation::kEach;
-  const double each_cost = EdgeRegistration(camera, options).evaluate(edges, data.view(), identity, &residuals);
+  const double cost = EdgeRegistration(camera, options).evaluate(edges, data.view(), identity, &residuals);
   ASSERT_EQ(residuals.size(), 2u);
   EXPECT_NEAR(residuals[0].value, 1.0, 1e-4);
   EXPECT_NEAR(residuals[1].value, -5.0, 1e-4);
   const double unmatched = huberCost(20.0, 10.0);  // class 2: nothing within the truncation radius
-  EXPECT_NEAR(each_cost, 2.0 * (0.5 + 12.5 + unmatched), 1e-3);
+  EXPECT_NEAR(cost, 2.0 * (0.5 + 12.5 + unmatched), 1e-3);
   EXPECT_NEAR(residuals[0].weight, 2.0, 1e-9);
-
-  options.class_association = ClassAssociation::kSplit;  // the pixel's weight over its three classes
-  const double split_cost = EdgeRegistration(camera, options).evaluate(edges, data.view(), identity, &residuals);
-  ASSERT_EQ(residuals.size(), 2u);
-  EXPECT_NEAR(residuals[1].value, -5.0, 1e-4);
-  EXPECT_NEAR(residuals[0].weight, 2.0 / 3.0, 1e-9);
-  EXPECT_NEAR(split_cost, each_cost / 3.0, 1e-6);
-}
-
-TEST(EdgeRegistration, ClassAssociationNamesRoundTrip) {
-  for (ClassAssociation association : {ClassAssociation::kNearest, ClassAssociation::kEach, ClassAssociation::kSplit}) {
-    ClassAssociation parsed = association == ClassAssociation::kNearest ? ClassAssociation::kEach : ClassAssociation::kNearest;
-    EXPECT_TRUE(parseClassAssociation(toString(association), &parsed));
-    EXPECT_EQ(parsed, association);
-  }
-  ClassAssociation unchanged = ClassAssociation::kEach;
-  EXPECT_FALSE(parseClassAssociation("min", &unchanged));
-  EXPECT_EQ(unchanged, ClassAssociation::kEach);
 }
 
 class RegistrationRecovers : public ::testing::TestWithParam<FieldKind> {};
