@@ -15,13 +15,13 @@
 
 #include "semantic_edge_vo/KeyframeMap.h"
 #include "semantic_edge_vo/TrackedFrame.h"
-#include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/common/class_table.h"
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
-#include "semantic_edge_vo/live_options.h"
+#include "semantic_edge_vo/config/live_options.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
-#include "semantic_edge_vo/options_loading.h"
+#include "semantic_edge_vo/config/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
 #include "semantic_edge_vo/ros/stamp_order.h"
 

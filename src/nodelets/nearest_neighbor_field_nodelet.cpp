@@ -4,11 +4,11 @@
 
 #include "semantic_edge_vo/NearestNeighborField.h"
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
-#include "semantic_edge_vo/nearest_neighbor_field.h"
+#include "semantic_edge_vo/fields/nearest_neighbor_field.h"
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
-#include "semantic_edge_vo/options_loading.h"
+#include "semantic_edge_vo/config/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
 
 namespace semantic_edge_vo {

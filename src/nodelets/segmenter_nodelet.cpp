@@ -11,12 +11,12 @@
 #include <sensor_msgs/image_encodings.h>
 #include <std_msgs/Float32.h>
 
-#include "semantic_edge_vo/class_table.h"
-#include "semantic_edge_vo/segmenter.h"
+#include "semantic_edge_vo/common/class_table.h"
+#include "semantic_edge_vo/edges/segmenter.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
-#include "semantic_edge_vo/intake_options_loading.h"
-#include "semantic_edge_vo/live_options.h"
-#include "semantic_edge_vo/options_loading.h"
+#include "semantic_edge_vo/config/intake_options_loading.h"
+#include "semantic_edge_vo/config/live_options.h"
+#include "semantic_edge_vo/config/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
 
 namespace semantic_edge_vo {

@@ -13,10 +13,10 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "semantic_edge_vo/canny_edge_detector.h"
-#include "semantic_edge_vo/command_line.h"
-#include "semantic_edge_vo/nearest_neighbor_field.h"
-#include "semantic_edge_vo/test_pattern.h"
+#include "semantic_edge_vo/edges/canny_edge_detector.h"
+#include "semantic_edge_vo/support/command_line.h"
+#include "semantic_edge_vo/fields/nearest_neighbor_field.h"
+#include "semantic_edge_vo/support/test_pattern.h"
 
 using namespace semantic_edge_vo;
 

@@ -19,13 +19,13 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "semantic_edge_vo/robust_statistics.h"
-#include "semantic_edge_vo/class_table.h"
-#include "semantic_edge_vo/command_line.h"
-#include "semantic_edge_vo/point_sampler.h"
-#include "semantic_edge_vo/segmenter.h"
-#include "semantic_edge_vo/semantic_edge_extractor.h"
-#include "semantic_edge_vo/test_pattern.h"
+#include "semantic_edge_vo/common/robust_statistics.h"
+#include "semantic_edge_vo/common/class_table.h"
+#include "semantic_edge_vo/support/command_line.h"
+#include "semantic_edge_vo/frontend/point_sampler.h"
+#include "semantic_edge_vo/edges/segmenter.h"
+#include "semantic_edge_vo/edges/semantic_edge_extractor.h"
+#include "semantic_edge_vo/support/test_pattern.h"
 
 using namespace semantic_edge_vo;
 

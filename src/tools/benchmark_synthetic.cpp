@@ -9,8 +9,8 @@
 
 #include <opencv2/core/utility.hpp>
 
-#include "semantic_edge_vo/class_table.h"
-#include "semantic_edge_vo/command_line.h"
+#include "semantic_edge_vo/common/class_table.h"
+#include "semantic_edge_vo/support/command_line.h"
 #include "semantic_edge_vo/synthetic/sequence_formats.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
 

@@ -16,11 +16,11 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "semantic_edge_vo/class_table.h"
-#include "semantic_edge_vo/command_line.h"
-#include "semantic_edge_vo/convergence_experiment.h"
-#include "semantic_edge_vo/line_plot.h"
-#include "semantic_edge_vo/point_sampler.h"
+#include "semantic_edge_vo/common/class_table.h"
+#include "semantic_edge_vo/support/command_line.h"
+#include "semantic_edge_vo/experiments/convergence_experiment.h"
+#include "semantic_edge_vo/eval/line_plot.h"
+#include "semantic_edge_vo/frontend/point_sampler.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
 
 using namespace semantic_edge_vo;

@@ -21,11 +21,11 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "semantic_edge_vo/class_table.h"
-#include "semantic_edge_vo/command_line.h"
-#include "semantic_edge_vo/edge_repeatability.h"
-#include "semantic_edge_vo/line_plot.h"
-#include "semantic_edge_vo/semantic_edge_extractor.h"
+#include "semantic_edge_vo/common/class_table.h"
+#include "semantic_edge_vo/support/command_line.h"
+#include "semantic_edge_vo/experiments/edge_repeatability.h"
+#include "semantic_edge_vo/eval/line_plot.h"
+#include "semantic_edge_vo/edges/semantic_edge_extractor.h"
 #include "semantic_edge_vo/synthetic/random.h"
 #include "semantic_edge_vo/synthetic/sequence_formats.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"

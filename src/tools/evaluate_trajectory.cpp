@@ -11,12 +11,12 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "semantic_edge_vo/command_line.h"
-#include "semantic_edge_vo/evaluation_report.h"
-#include "semantic_edge_vo/ros/bag_trajectory.h"
+#include "semantic_edge_vo/support/command_line.h"
+#include "semantic_edge_vo/eval/evaluation_report.h"
+#include "semantic_edge_vo/ros/bags/bag_trajectory.h"
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
-#include "semantic_edge_vo/trajectory_evaluator.h"
-#include "semantic_edge_vo/trajectory_plot.h"
+#include "semantic_edge_vo/eval/trajectory_evaluator.h"
+#include "semantic_edge_vo/eval/trajectory_plot.h"
 
 namespace sevo = semantic_edge_vo;
 namespace fs = std::filesystem;

@@ -10,9 +10,9 @@
 #include <memory>
 #include <string>
 
-#include "semantic_edge_vo/command_line.h"
-#include "semantic_edge_vo/progress_bar.h"
-#include "semantic_edge_vo/ros/kitti_bag_conversion.h"
+#include "semantic_edge_vo/support/command_line.h"
+#include "semantic_edge_vo/support/progress_bar.h"
+#include "semantic_edge_vo/ros/bags/kitti_bag_conversion.h"
 
 namespace sevo = semantic_edge_vo;
 

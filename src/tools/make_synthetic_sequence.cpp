@@ -15,9 +15,9 @@
 #include <string>
 #include <thread>
 
-#include "semantic_edge_vo/command_line.h"
-#include "semantic_edge_vo/progress_bar.h"
-#include "semantic_edge_vo/ros/sequence_bag_writer.h"
+#include "semantic_edge_vo/support/command_line.h"
+#include "semantic_edge_vo/support/progress_bar.h"
+#include "semantic_edge_vo/ros/bags/sequence_bag_writer.h"
 #include "semantic_edge_vo/synthetic/sequence_directory_writer.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
 

@@ -7,16 +7,16 @@
 #include <optional>
 #include <sstream>
 
-#include "semantic_edge_vo/class_table.h"
-#include "semantic_edge_vo/command_line.h"
-#include "semantic_edge_vo/host_cpu.h"
-#include "semantic_edge_vo/graph_config.h"
-#include "semantic_edge_vo/keyframe_depth_report.h"
-#include "semantic_edge_vo/odometry.h"
-#include "semantic_edge_vo/progress_bar.h"
-#include "semantic_edge_vo/robust_statistics.h"
-#include "semantic_edge_vo/sequence_input.h"
-#include "semantic_edge_vo/trajectory_io.h"
+#include "semantic_edge_vo/common/class_table.h"
+#include "semantic_edge_vo/support/command_line.h"
+#include "semantic_edge_vo/support/host_cpu.h"
+#include "semantic_edge_vo/config/graph_config.h"
+#include "semantic_edge_vo/eval/keyframe_depth_report.h"
+#include "semantic_edge_vo/backend/odometry.h"
+#include "semantic_edge_vo/support/progress_bar.h"
+#include "semantic_edge_vo/common/robust_statistics.h"
+#include "semantic_edge_vo/sequences/sequence_input.h"
+#include "semantic_edge_vo/eval/trajectory_io.h"
 
 using namespace semantic_edge_vo;
 

@@ -6,14 +6,14 @@
 #include <filesystem>
 #include <vector>
 
-#include "semantic_edge_vo/class_table.h"
-#include "semantic_edge_vo/command_line.h"
-#include "semantic_edge_vo/graph_config.h"
-#include "semantic_edge_vo/kitti_sequence.h"
-#include "semantic_edge_vo/progress_bar.h"
-#include "semantic_edge_vo/robust_statistics.h"
-#include "semantic_edge_vo/semantic_map_files.h"
-#include "semantic_edge_vo/sequence_input.h"
+#include "semantic_edge_vo/common/class_table.h"
+#include "semantic_edge_vo/support/command_line.h"
+#include "semantic_edge_vo/config/graph_config.h"
+#include "semantic_edge_vo/sequences/kitti_sequence.h"
+#include "semantic_edge_vo/support/progress_bar.h"
+#include "semantic_edge_vo/common/robust_statistics.h"
+#include "semantic_edge_vo/sequences/semantic_map_files.h"
+#include "semantic_edge_vo/sequences/sequence_input.h"
 
 using namespace semantic_edge_vo;
 

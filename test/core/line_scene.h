@@ -2,8 +2,8 @@
 // Test fixture: a random scene of 3D line segments with classes, and what two cameras see of it.
 #include <random>
 
-#include "semantic_edge_vo/edge_registration.h"
-#include "semantic_edge_vo/edge_set.h"
+#include "semantic_edge_vo/frontend/edge_registration.h"
+#include "semantic_edge_vo/common/edge_set.h"
 
 namespace semantic_edge_vo {
 namespace testing_scenes {

@@ -3,10 +3,10 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "semantic_edge_vo/canny_edge_detector.h"
-#include "semantic_edge_vo/class_table.h"
-#include "semantic_edge_vo/point_sampler.h"
-#include "semantic_edge_vo/test_pattern.h"
+#include "semantic_edge_vo/edges/canny_edge_detector.h"
+#include "semantic_edge_vo/common/class_table.h"
+#include "semantic_edge_vo/frontend/point_sampler.h"
+#include "semantic_edge_vo/support/test_pattern.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
-#include "semantic_edge_vo/class_evidence.h"
+#include "semantic_edge_vo/edges/class_evidence.h"
 
 namespace semantic_edge_vo {
 namespace {

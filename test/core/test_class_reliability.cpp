@@ -3,8 +3,8 @@
 // the all-edges layer, as ANNF would match it.
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/class_reliability.h"
-#include "semantic_edge_vo/odometry_frame.h"
+#include "semantic_edge_vo/frontend/class_reliability.h"
+#include "semantic_edge_vo/frontend/odometry_frame.h"
 
 namespace semantic_edge_vo {
 namespace {

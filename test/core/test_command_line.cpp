@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/command_line.h"
+#include "semantic_edge_vo/support/command_line.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "line_scene.h"
-#include "semantic_edge_vo/convergence_experiment.h"
+#include "semantic_edge_vo/experiments/convergence_experiment.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "line_scene.h"
-#include "semantic_edge_vo/robust_statistics.h"
+#include "semantic_edge_vo/common/robust_statistics.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/edge_repeatability.h"
+#include "semantic_edge_vo/experiments/edge_repeatability.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -4,10 +4,10 @@
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
-#include "semantic_edge_vo/epipolar_depth.h"
-#include "semantic_edge_vo/image_pyramid.h"
-#include "semantic_edge_vo/nearest_neighbor_field.h"
-#include "semantic_edge_vo/shared_class_edge_test.h"
+#include "semantic_edge_vo/backend/epipolar_depth.h"
+#include "semantic_edge_vo/frontend/image_pyramid.h"
+#include "semantic_edge_vo/fields/nearest_neighbor_field.h"
+#include "semantic_edge_vo/fields/shared_class_edge_test.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/forward_motion_prior.h"
+#include "semantic_edge_vo/frontend/forward_motion_prior.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -1,7 +1,7 @@
 // A tracked frame agrees with the recent frames when its inlier ratio and its motion are close to theirs.
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/frame_consistency.h"
+#include "semantic_edge_vo/frontend/frame_consistency.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <thread>
 
-#include "semantic_edge_vo/host_cpu.h"
+#include "semantic_edge_vo/support/host_cpu.h"
 
 namespace semantic_edge_vo {
 namespace {

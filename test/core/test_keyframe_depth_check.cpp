@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "semantic_edge_vo/keyframe_depth_check.h"
-#include "semantic_edge_vo/keyframe_depth_report.h"
+#include "semantic_edge_vo/eval/keyframe_depth_check.h"
+#include "semantic_edge_vo/eval/keyframe_depth_report.h"
 #include "semantic_edge_vo/synthetic/sequence_formats.h"
 
 namespace semantic_edge_vo {

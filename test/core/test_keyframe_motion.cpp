@@ -7,10 +7,10 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "semantic_edge_vo/corner_tracks.h"
-#include "semantic_edge_vo/keyframe_motion.h"
+#include "semantic_edge_vo/backend/corner_tracks.h"
+#include "semantic_edge_vo/backend/keyframe_motion.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
-#include "semantic_edge_vo/two_view_geometry.h"
+#include "semantic_edge_vo/backend/two_view_geometry.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/line_plot.h"
+#include "semantic_edge_vo/eval/line_plot.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/nearest_neighbor_field.h"
-#include "semantic_edge_vo/shared_class_edge_test.h"
+#include "semantic_edge_vo/fields/nearest_neighbor_field.h"
+#include "semantic_edge_vo/fields/shared_class_edge_test.h"
 
 namespace semantic_edge_vo {
 namespace {

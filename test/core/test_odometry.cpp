@@ -11,11 +11,11 @@
 
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/class_table.h"
-#include "semantic_edge_vo/odometry.h"
-#include "semantic_edge_vo/odometry_frame.h"
+#include "semantic_edge_vo/common/class_table.h"
+#include "semantic_edge_vo/backend/odometry.h"
+#include "semantic_edge_vo/frontend/odometry_frame.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
-#include "semantic_edge_vo/trajectory_evaluation.h"
+#include "semantic_edge_vo/eval/trajectory_evaluation.h"
 
 namespace semantic_edge_vo {
 namespace {

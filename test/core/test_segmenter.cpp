@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "semantic_edge_vo/class_table.h"
-#include "semantic_edge_vo/segmenter.h"
+#include "semantic_edge_vo/common/class_table.h"
+#include "semantic_edge_vo/edges/segmenter.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "semantic_edge_vo/semantic_edge_extractor.h"
+#include "semantic_edge_vo/edges/semantic_edge_extractor.h"
 
 namespace semantic_edge_vo {
 namespace {

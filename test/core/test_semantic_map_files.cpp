@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
-#include "semantic_edge_vo/semantic_map_files.h"
+#include "semantic_edge_vo/sequences/semantic_map_files.h"
 
 namespace semantic_edge_vo {
 namespace {

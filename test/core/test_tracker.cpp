@@ -1,11 +1,11 @@
 
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/odometry_frame.h"
-#include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/frontend/odometry_frame.h"
+#include "semantic_edge_vo/common/class_table.h"
 #include "semantic_edge_vo/synthetic/sequence_formats.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
-#include "semantic_edge_vo/tracker.h"
+#include "semantic_edge_vo/frontend/tracker.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -9,12 +9,12 @@
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
-#include "semantic_edge_vo/evaluation_report.h"
-#include "semantic_edge_vo/json_text.h"
-#include "semantic_edge_vo/trajectory_association.h"
-#include "semantic_edge_vo/trajectory_evaluator.h"
-#include "semantic_edge_vo/trajectory_io.h"
-#include "semantic_edge_vo/trajectory_plot.h"
+#include "semantic_edge_vo/eval/evaluation_report.h"
+#include "semantic_edge_vo/support/json_text.h"
+#include "semantic_edge_vo/eval/trajectory_association.h"
+#include "semantic_edge_vo/eval/trajectory_evaluator.h"
+#include "semantic_edge_vo/eval/trajectory_io.h"
+#include "semantic_edge_vo/eval/trajectory_plot.h"
 
 namespace semantic_edge_vo {
 namespace {

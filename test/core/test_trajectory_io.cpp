@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/trajectory_io.h"
+#include "semantic_edge_vo/eval/trajectory_io.h"
 
 namespace semantic_edge_vo {
 namespace {

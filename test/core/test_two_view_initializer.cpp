@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "semantic_edge_vo/two_view_initializer.h"
+#include "semantic_edge_vo/backend/two_view_initializer.h"
 #include "truck_scene.h"
 
 namespace semantic_edge_vo {

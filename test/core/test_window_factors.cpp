@@ -7,11 +7,11 @@
 #include <ceres/problem.h>
 #include <opencv2/imgproc.hpp>
 
-#include "semantic_edge_vo/factors/relative_rotation_factor.h"
-#include "semantic_edge_vo/factors/travel_direction_factor.h"
-#include "semantic_edge_vo/factors/window_observations.h"
-#include "semantic_edge_vo/image_pyramid.h"
-#include "semantic_edge_vo/window_optimizer.h"
+#include "semantic_edge_vo/backend/factors/relative_rotation_factor.h"
+#include "semantic_edge_vo/backend/factors/travel_direction_factor.h"
+#include "semantic_edge_vo/backend/factors/window_observations.h"
+#include "semantic_edge_vo/frontend/image_pyramid.h"
+#include "semantic_edge_vo/backend/window_optimizer.h"
 
 namespace semantic_edge_vo {
 namespace {

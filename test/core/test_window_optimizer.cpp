@@ -6,11 +6,11 @@
 
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/class_table.h"
-#include "semantic_edge_vo/odometry_frame.h"
-#include "semantic_edge_vo/se3.h"
+#include "semantic_edge_vo/common/class_table.h"
+#include "semantic_edge_vo/frontend/odometry_frame.h"
+#include "semantic_edge_vo/common/se3.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
-#include "semantic_edge_vo/window_optimizer.h"
+#include "semantic_edge_vo/backend/window_optimizer.h"
 
 namespace semantic_edge_vo {
 namespace {

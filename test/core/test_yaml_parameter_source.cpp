@@ -3,9 +3,9 @@
 
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/graph_config.h"
-#include "semantic_edge_vo/options_loading.h"
-#include "semantic_edge_vo/yaml_parameter_source.h"
+#include "semantic_edge_vo/config/graph_config.h"
+#include "semantic_edge_vo/config/options_loading.h"
+#include "semantic_edge_vo/config/yaml_parameter_source.h"
 
 namespace semantic_edge_vo {
 namespace {

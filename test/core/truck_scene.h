@@ -8,7 +8,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "semantic_edge_vo/camera.h"
+#include "semantic_edge_vo/common/camera.h"
 
 namespace semantic_edge_vo {
 namespace testing_scenes {

@@ -14,7 +14,7 @@
 
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
 #include "semantic_edge_vo/TrackingStatus.h"
-#include "semantic_edge_vo/test_pattern.h"
+#include "semantic_edge_vo/support/test_pattern.h"
 
 namespace semantic_edge_vo {
 namespace {

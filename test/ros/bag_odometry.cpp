@@ -32,8 +32,8 @@
 
 #include "semantic_edge_vo/TrackingStatus.h"
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
-#include "semantic_edge_vo/trajectory_evaluation.h"
-#include "semantic_edge_vo/trajectory_io.h"
+#include "semantic_edge_vo/eval/trajectory_evaluation.h"
+#include "semantic_edge_vo/eval/trajectory_io.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -5,7 +5,7 @@
 #include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
 
-#include "semantic_edge_vo/class_evidence.h"
+#include "semantic_edge_vo/edges/class_evidence.h"
 
 namespace semantic_edge_vo {
 

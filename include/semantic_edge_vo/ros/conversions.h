@@ -7,10 +7,10 @@
 
 #include "semantic_edge_vo/NearestNeighborField.h"
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
-#include "semantic_edge_vo/camera.h"
-#include "semantic_edge_vo/edge_set.h"
-#include "semantic_edge_vo/nearest_neighbor_field.h"
-#include "semantic_edge_vo/odometry_frame.h"
+#include "semantic_edge_vo/common/camera.h"
+#include "semantic_edge_vo/common/edge_set.h"
+#include "semantic_edge_vo/fields/nearest_neighbor_field.h"
+#include "semantic_edge_vo/frontend/odometry_frame.h"
 
 namespace semantic_edge_vo {
 

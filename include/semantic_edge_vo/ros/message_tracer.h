@@ -4,7 +4,7 @@
 #include <ros/node_handle.h>
 #include <ros/publisher.h>
 
-#include "semantic_edge_vo/parameter_loader.h"
+#include "semantic_edge_vo/config/parameter_loader.h"
 
 namespace semantic_edge_vo {
 

@@ -1,8 +1,8 @@
 #pragma once
 #include <ros/node_handle.h>
 
-#include "semantic_edge_vo/parameter_loader.h"
-#include "semantic_edge_vo/parameter_source.h"
+#include "semantic_edge_vo/config/parameter_loader.h"
+#include "semantic_edge_vo/config/parameter_source.h"
 
 namespace semantic_edge_vo {
 

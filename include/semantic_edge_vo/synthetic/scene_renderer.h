@@ -5,7 +5,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/core/mat.hpp>
 
-#include "semantic_edge_vo/camera.h"
+#include "semantic_edge_vo/common/camera.h"
 #include "semantic_edge_vo/synthetic/rasterizer.h"
 #include "semantic_edge_vo/synthetic/road_profile.h"
 #include "semantic_edge_vo/synthetic/scene_geometry.h"

@@ -6,7 +6,7 @@
 
 #include <opencv2/core/mat.hpp>
 
-#include "semantic_edge_vo/class_table.h"
+#include "semantic_edge_vo/common/class_table.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
 
 namespace semantic_edge_vo {

@@ -6,7 +6,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/core/mat.hpp>
 
-#include "semantic_edge_vo/camera.h"
+#include "semantic_edge_vo/common/camera.h"
 #include "semantic_edge_vo/synthetic/camera_effects.h"
 #include "semantic_edge_vo/synthetic/network_noise.h"
 #include "semantic_edge_vo/synthetic/scene_renderer.h"

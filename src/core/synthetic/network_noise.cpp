@@ -6,7 +6,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "semantic_edge_vo/command_line.h"
+#include "semantic_edge_vo/support/command_line.h"
 #include "semantic_edge_vo/synthetic/noise.h"
 #include "semantic_edge_vo/synthetic/random.h"
 

@@ -15,8 +15,8 @@
 #include <sensor_msgs/Image.h>
 
 #include "semantic_edge_vo/ros/conversions.h"
-#include "semantic_edge_vo/ros/kitti_bag_conversion.h"
-#include "semantic_edge_vo/trajectory_io.h"
+#include "semantic_edge_vo/ros/bags/kitti_bag_conversion.h"
+#include "semantic_edge_vo/eval/trajectory_io.h"
 
 namespace semantic_edge_vo {
 namespace {

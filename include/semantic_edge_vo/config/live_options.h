@@ -1,0 +1,68 @@
+#pragma once
+#include <string>
+
+#include "semantic_edge_vo/config/parameter_loader.h"
+
+namespace semantic_edge_vo {
+
+// Options that only the live graph uses (subscriptions, tf, outputs). They live in the core, with
+// the rest, so that each default is written once and the offline tools read a config file's blocks
+// whole and can name a key that nothing reads.
+
+/// The EdgeIntake nodelet's input streams.
+struct IntakeStreamOptions {
+  int queue_size = 5;                            ///< image/camera_info subscription queue, messages
+  std::string transport = "raw";                 ///< raw | compressed
+  double time_jump_back = 1.0;                   ///< s: a stamp this far back starts the graph over
+  bool rectify = false;                          ///< undistort with camera_info first
+  std::string class_format = "probabilities";    ///< probabilities | labels | bitmask
+  std::string edge_source = "canny";             ///< fused: canny | topic
+  double class_wait = 0.5;                       ///< s an image waits for its class map
+  std::string on_missing_classes = "canny";      ///< drop | canny
+  int max_pending = 10;                          ///< images waiting for class maps, frames
+
+  std::string validate() const;
+};
+
+/// The frames the Tracking and Mapping nodelets publish in (REP-105).
+struct FrameNames {
+  std::string odom_frame = "odom", base_frame = "base_link";
+
+  std::string validate() const;
+};
+
+/// The Tracking nodelet's frames on tf.
+struct TfOptions {
+  FrameNames frames;
+  bool publish_tf = true;
+  bool publish_default_camera_tf = true;  ///< without base_link -> camera on tf, publish the optical-rotation default
+
+  std::string validate() const;
+};
+
+/// The Mapping nodelet's map and path.
+struct MapOutputOptions {
+  FrameNames frames;
+  int queue_size = 20;           ///< messages in front of the mapping thread
+  double voxel_size = 0.1;       ///< map units
+  int max_map_points = 200000;
+  int max_path_poses = 10000;
+
+  std::string validate() const;
+};
+
+/// The Segmenter nodelet's output.
+struct SegmenterOutputOptions {
+  int output_bits = 32;  ///< 32: 32FC<C> probabilities | 8: 8UC<C> (probability x 255)
+  int log_every = 100;   ///< frames between logs of the median time
+
+  std::string validate() const;
+};
+
+// Loaders under the nodelets' parameter names; each returns the validation error.
+std::string loadIntakeStreamOptions(ParameterLoader* loader, IntakeStreamOptions* options);
+std::string loadTfOptions(ParameterLoader* loader, TfOptions* options);
+std::string loadMapOutputOptions(ParameterLoader* loader, MapOutputOptions* options);
+std::string loadSegmenterOutputOptions(ParameterLoader* loader, SegmenterOutputOptions* options);
+
+}  // namespace semantic_edge_vo

@@ -1,0 +1,47 @@
+#pragma once
+#include <cstddef>
+#include <string>
+
+#include "semantic_edge_vo/eval/trajectory_association.h"
+#include "semantic_edge_vo/eval/trajectory_evaluation.h"
+
+namespace semantic_edge_vo {
+
+struct TrajectoryEvaluationOptions {
+  AteProtocolOptions paper_ate;
+  int rpe_delta_frames = 1;
+  KittiDriftOptions kitti_drift;
+  double min_gt_translation_m = 0.05;  ///< frame-to-frame directions need this much true motion, metres
+  double min_keyframe_travel_m = 0.2;  ///< keyframe intervals need this much true travel for their scale, metres
+
+  std::string validate() const;
+};
+
+/// All metrics of one estimate against its ground truth. A metric that could not be computed keeps
+/// its defaults and says why in the matching `*_unavailable` (empty when it was computed).
+struct TrajectoryEvaluation {
+  std::size_t pairs = 0;     ///< corresponding poses evaluated
+  double gt_length_m = 0.0;  ///< ground-truth path length over them
+  AteResult sim3_ate;        ///< whole trajectory, Umeyama Sim(3)
+  AteResult se3_ate;         ///< whole trajectory, Umeyama SE(3)
+  ErrorStatistics straight_line_m;  ///< the ground truth against its closest constant-speed straight line (reference)
+  SegmentedAteResult paper_ate;
+  std::string paper_ate_unavailable;
+  RpeResult rpe;  ///< estimated translations scaled by the Sim(3) scale
+  std::string rpe_unavailable;
+  KittiDriftResult drift_as_given;    ///< estimate as it is (the devkit, for metric estimates)
+  KittiDriftResult drift_sim3_scale;  ///< estimated translations scaled by the Sim(3) scale (monocular)
+  std::string drift_unavailable;
+  FrameToFrameErrors frame_to_frame;
+  KeyframeScaleChanges keyframe_scale;  ///< with the estimate's keyframes
+  std::string keyframe_scale_unavailable;
+};
+
+/// Computes every metric on the pairs; fails only when the whole-trajectory alignment is impossible
+/// (fewer than 3 pairs, or an estimate that does not move).
+/// @param[in] keyframe_frames ground-truth frame numbers of the estimate's keyframes (empty: the
+///            keyframe scale changes are not available)
+std::string evaluateTrajectory(const PosePairs& pairs, const TrajectoryEvaluationOptions& options,
+                               const std::vector<std::size_t>& keyframe_frames, TrajectoryEvaluation* evaluation);
+
+}  // namespace semantic_edge_vo

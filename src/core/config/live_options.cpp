@@ -1,0 +1,82 @@
+#include "semantic_edge_vo/config/live_options.h"
+
+namespace semantic_edge_vo {
+
+std::string IntakeStreamOptions::validate() const {
+  if (queue_size < 1) return "queue_size must be >= 1";
+  if (!(time_jump_back > 0.0)) return "time_jump_back must be > 0 s";
+  if (transport != "raw" && transport != "compressed") return "transport must be raw or compressed (got '" + transport + "')";
+  if (class_format != "probabilities" && class_format != "labels" && class_format != "bitmask")
+    return "class_format must be probabilities, labels or bitmask (got '" + class_format + "')";
+  if (edge_source != "canny" && edge_source != "topic") return "edge_source must be canny or topic (got '" + edge_source + "')";
+  if (on_missing_classes != "drop" && on_missing_classes != "canny")
+    return "on_missing_classes must be drop or canny (got '" + on_missing_classes + "')";
+  if (!(class_wait > 0.0 && max_pending >= 1)) return "need class_wait > 0 s and max_pending >= 1";
+  return "";
+}
+
+std::string FrameNames::validate() const {
+  if (odom_frame.empty() || base_frame.empty() || odom_frame == base_frame) return "odom_frame and base_frame must be non-empty and differ";
+  return "";
+}
+
+std::string TfOptions::validate() const { return frames.validate(); }
+
+std::string MapOutputOptions::validate() const {
+  if (const std::string error = frames.validate(); !error.empty()) return error;
+  if (queue_size < 1 || max_map_points < 1 || max_path_poses < 1) return "queue_size, max_map_points and max_path_poses must be >= 1";
+  if (!(voxel_size > 0.0)) return "voxel_size must be > 0";
+  return "";
+}
+
+std::string SegmenterOutputOptions::validate() const {
+  if (output_bits != 32 && output_bits != 8) return "output_bits must be 32 or 8";
+  if (log_every < 1) return "log_every must be >= 1";
+  return "";
+}
+
+std::string loadIntakeStreamOptions(ParameterLoader* loader, IntakeStreamOptions* options) {
+  loader->load("queue_size", &options->queue_size, "messages");
+  loader->load("transport", &options->transport, "(raw | compressed)");
+  loader->load("time_jump_back", &options->time_jump_back, "s");
+  loader->load("rectify", &options->rectify, "(undistort with camera_info's D, K, R, P)");
+  loader->load("class_format", &options->class_format, "(probabilities | labels | bitmask)");
+  loader->load("edge_source", &options->edge_source, "(canny | topic; fused)");
+  loader->load("class_wait", &options->class_wait, "s");
+  loader->load("on_missing_classes", &options->on_missing_classes, "(drop | canny)");
+  loader->load("max_pending", &options->max_pending, "frames");
+  return options->validate();
+}
+
+namespace {
+
+void loadFrameNames(ParameterLoader* loader, FrameNames* frames) {
+  loader->load("odom_frame", &frames->odom_frame);
+  loader->load("base_frame", &frames->base_frame);
+}
+
+}  // namespace
+
+std::string loadTfOptions(ParameterLoader* loader, TfOptions* options) {
+  loadFrameNames(loader, &options->frames);
+  loader->load("publish_tf", &options->publish_tf);
+  loader->load("publish_default_camera_tf", &options->publish_default_camera_tf);
+  return options->validate();
+}
+
+std::string loadMapOutputOptions(ParameterLoader* loader, MapOutputOptions* options) {
+  loadFrameNames(loader, &options->frames);
+  loader->load("queue_size", &options->queue_size, "messages");
+  loader->load("voxel_size", &options->voxel_size, "map units (m up to the monocular scale)");
+  loader->load("max_map_points", &options->max_map_points, "points");
+  loader->load("max_path_poses", &options->max_path_poses, "poses");
+  return options->validate();
+}
+
+std::string loadSegmenterOutputOptions(ParameterLoader* loader, SegmenterOutputOptions* options) {
+  loader->load("output_bits", &options->output_bits, "(32: 32FC<C> probabilities | 8: 8UC<C>, probability x 255)");
+  loader->load("log_every", &options->log_every, "frames");
+  return options->validate();
+}
+
+}  // namespace semantic_edge_vo
