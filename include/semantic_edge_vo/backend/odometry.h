@@ -9,6 +9,7 @@
 #include "semantic_edge_vo/backend/deferred_window_optimization.h"
 #include "semantic_edge_vo/backend/epipolar_depth.h"
 #include "semantic_edge_vo/frontend/frame_consistency.h"
+#include "semantic_edge_vo/frontend/motion_model.h"
 #include "semantic_edge_vo/backend/keyframe.h"
 #include "semantic_edge_vo/backend/keyframe_motion.h"
 #include "semantic_edge_vo/frontend/tracker.h"
@@ -96,6 +97,13 @@ class Odometry {
   /// `start`: when the frame's processing began (its time is the waiting frame's).
   std::vector<FramePose> initialize(const std::shared_ptr<const OdometryFrame>& frame, std::chrono::steady_clock::time_point start);
   void startInitialization(const std::shared_ptr<const OdometryFrame>& frame);
+  /// The first waiting frame as the first keyframe, with the initialiser's depths, where the
+  /// odometry predicts it (at the last map's scale after a loss); `T_last_first` gets the newest
+  /// waiting frame's pose relative to it at that scale.
+  std::shared_ptr<const Keyframe> makeFirstKeyframe(Eigen::Isometry3d* T_last_first);
+  /// The poses of the frames that waited for the initialisation: the keyframe's, then each tracked
+  /// against it from its share of `T_last_first`; the odometry tracks on.
+  std::vector<FramePose> posesOfWaitingFrames(const Keyframe& keyframe, const Eigen::Isometry3d& T_last_first, double keyframe_ms);
   /// After a loss, tracks the frame against the map it had (the view may come back: an occlusion, a
   /// standing car). On success the odometry tracks on, `poses` gets the waiting frames' untrusted
   /// predictions and the frame's pose; otherwise nothing changes.
@@ -116,8 +124,6 @@ class Odometry {
   /// Median flow of the keyframe's measured points between where the frame's rotation alone and its
   /// whole motion take them, px: the parallax a keyframe made from the frame would triangulate with.
   double travelParallax(const Keyframe& keyframe, const Eigen::Isometry3d& T_frame_kf) const;
-  /// The median travel of the newest `newest` driving_motions_ (zero before any).
-  Vector6d drivingMotion(std::size_t newest = kDrivingMotions) const;
   /// Refines the active keyframe's depths with a tracked frame. Returns the frame's edge test (null
   /// without a field), which the frame keeps if it becomes a keyframe.
   std::shared_ptr<const SharedClassEdgeTest> refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf);
@@ -151,22 +157,8 @@ class Odometry {
   void followCorners(const OdometryFrame& frame);
   /// Initial guesses for the frame, from the last pose and the frame intervals since it.
   std::vector<Eigen::Isometry3d> guesses(const Keyframe& keyframe, const OdometryFrame& frame) const;
-  /// A frame's, or a pose's, index and time stamp.
-  struct FrameStamp {
-    int index = 0;
-    double time = 0.0;
-  };
   static FrameStamp stampOf(const OdometryFrame& frame) { return {frame.index, frame.time}; }
-  /// Frame intervals from one to the other, a whole number, at least 1: by the stamps at the usual
-  /// interval, so that frames the stream dropped count; by the indices without stamps.
-  double framesBetween(const FrameStamp& from, const FrameStamp& to) const;
-  /// Frame intervals from the last pose to the frame that the velocity is extrapolated over: fewer
-  /// (down to 0) once kMaxDeadReckoning frames passed since the last trusted pose.
-  double framesToExtrapolate(const OdometryFrame& frame) const;
-  /// The motion of one frame interval at the velocity of the last two poses (identity before two).
-  Eigen::Isometry3d frameMotion() const;
-  /// The frame's pose at constant velocity from the last pose (framesToExtrapolate).
-  Eigen::Isometry3d predict(const OdometryFrame& frame) const;
+  /// A final pose: the motion model's, and its inlier ratio among the recent ones when trusted.
   void remember(const FramePose& pose);
 
   OdometryOptions options_;
@@ -191,22 +183,9 @@ class Odometry {
   std::shared_ptr<Keyframe> active_;
   int next_keyframe_id_ = 0;
   int frames_since_keyframe_ = 0;
-  // The last two final poses (constant-velocity prediction) and whether any exists.
-  Eigen::Isometry3d T_world_last_ = Eigen::Isometry3d::Identity(), T_world_before_ = Eigen::Isometry3d::Identity();
-  int poses_seen_ = 0;
-  FrameStamp last_stamp_, before_stamp_;  ///< of those two poses
-  /// Time between consecutive frame indices over the last poses, s: their median is the usual interval.
-  std::deque<double> frame_intervals_;
-  static constexpr std::size_t kFrameIntervals = 10;
-  FrameStamp last_trusted_stamp_;
-  static constexpr int kMaxDeadReckoning = 50;  ///< frames predicted on from the last trusted pose: 5 s at 10 Hz
+  MotionModel motion_;  ///< the recent poses: predictions and initial guesses
   double speed_at_restart_ = 0.0;  ///< driving travel per frame interval (drivingMotion) when the map was given up: the next one's scale
-  /// Frame-to-frame travel (rotation left out) of the last trusted frames that moved: the guess
-  /// after a stop (drivingMotion).
-  std::deque<Vector6d> driving_motions_;
-  static constexpr std::size_t kDrivingMotions = 100;  ///< 10 s at 10 Hz
-  static constexpr std::size_t kRestartMotions = 10;   ///< the last second: a new map's scale after a loss
-  static constexpr double kStandingFraction = 0.1;     ///< of the driving travel: standing, or nearly
+  static constexpr std::size_t kRestartMotions = 10;   ///< the last second of driving: a new map's scale after a loss
   /// Photometric inlier ratios of the last tracked frames: how well the map explained them (relocalize).
   std::deque<double> recent_inlier_ratios_;
   static constexpr std::size_t kRecentInlierRatios = 10;

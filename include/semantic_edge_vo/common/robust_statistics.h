@@ -1,6 +1,7 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <vector>
 
 namespace semantic_edge_vo {
@@ -23,6 +24,13 @@ inline double median(std::vector<double> values) {
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
   std::nth_element(values.begin(), middle, values.end());
   return *middle;
+}
+
+/// Appends the value to the recent ones a statistic is taken over, keeping the newest `count`.
+template <typename T>
+void keepLast(const T& value, std::size_t count, std::deque<T>* values) {
+  values->push_back(value);
+  if (values->size() > count) values->pop_front();
 }
 
 }  // namespace semantic_edge_vo

@@ -1,72 +1,25 @@
-#include "semantic_edge_vo/common/robust_statistics.h"
+// Odometry: the frame loop (track, check, recover) and its state; initialisation and keyframes are
+// in odometry_initialization.cpp and odometry_keyframes.cpp.
 #include "semantic_edge_vo/backend/odometry.h"
-#include "semantic_edge_vo/common/parallel_slices.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
 
+#include "odometry_detail.h"
+#include "semantic_edge_vo/common/robust_statistics.h"
+
 namespace semantic_edge_vo {
-namespace {
 
-double elapsedMs(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
-}
+using odometry_detail::elapsedMs;
+using odometry_detail::gray8;
 
-std::shared_ptr<const SharedClassEdgeTest> edgeTestOf(const OdometryFrame& frame, double radius) {
-  return frame.has_field ? std::make_shared<const SharedClassEdgeTest>(frame.field, radius) : nullptr;
-}
-
-/// Appends the value, keeping the newest `count` values.
-template <typename T>
-void keepLast(const T& value, std::size_t count, std::deque<T>* values) {
-  values->push_back(value);
-  if (values->size() > count) values->pop_front();
-}
-
-cv::Mat gray8(const OdometryFrame& frame) {
+cv::Mat odometry_detail::gray8(const OdometryFrame& frame) {
   cv::Mat gray;
   frame.pyramid->level(0).intensity.convertTo(gray, CV_8U);
   return gray;
 }
-
-/// A measured inverse depth at a pixel of the keyframe that receives it.
-struct DepthSample {
-  Eigen::Vector2d pixel;
-  double inverse_depth;
-};
-
-/// Points without a measurement take the median of the samples within `radius` (bucketed), or of
-/// all samples, as a prior with a wide variance; the epipolar search then measures them.
-void propagateDepths(const std::vector<DepthSample>& samples, const PinholeCamera& camera, double radius,
-                     double default_inverse_depth, std::vector<MapPoint>* points) {
-  const int cols = static_cast<int>(std::ceil(camera.width / radius)), rows = static_cast<int>(std::ceil(camera.height / radius));
-  std::vector<std::vector<const DepthSample*>> buckets(static_cast<std::size_t>(cols * rows));
-  std::vector<double> all;
-  for (const DepthSample& sample : samples) {
-    const int bx = std::clamp(static_cast<int>(sample.pixel.x() / radius), 0, cols - 1);
-    const int by = std::clamp(static_cast<int>(sample.pixel.y() / radius), 0, rows - 1);
-    buckets[static_cast<std::size_t>(by * cols + bx)].push_back(&sample);
-    all.push_back(sample.inverse_depth);
-  }
-  const double fallback = all.empty() ? default_inverse_depth : median(all);
-  std::vector<double> near;
-  for (MapPoint& point : *points) {
-    if (point.hasDepth()) continue;
-    near.clear();
-    const int bx = static_cast<int>(point.u / radius), by = static_cast<int>(point.v / radius);
-    for (int y = std::max(0, by - 1); y <= std::min(rows - 1, by + 1); ++y)
-      for (int x = std::max(0, bx - 1); x <= std::min(cols - 1, bx + 1); ++x)
-        for (const DepthSample* sample : buckets[static_cast<std::size_t>(y * cols + x)])
-          if ((sample->pixel - Eigen::Vector2d(point.u, point.v)).norm() <= radius) near.push_back(sample->inverse_depth);
-    point.inverse_depth = near.empty() ? fallback : median(near);
-    point.inverse_depth_variance = std::pow((near.empty() ? 1.0 : 0.5) * point.inverse_depth, 2);
-    point.observations = 0;
-  }
-}
-
-}  // namespace
 
 const char* toString(OdometryState state) {
   switch (state) {
@@ -131,8 +84,8 @@ void Odometry::restart() {
   untrusted_in_a_row_ = 0;
   // The speed it drove at over the last second, not the last frame's (traffic that made the loss may
   // have dragged it towards standing) nor that of the last minutes (a car slows into a turn).
-  const double driving_speed = drivingMotion(kRestartMotions).head<3>().norm();
-  speed_at_restart_ = driving_speed > 0.0 ? driving_speed : frameMotion().translation().norm();
+  const double driving_speed = motion_.drivingMotion(kRestartMotions).head<3>().norm();
+  speed_at_restart_ = driving_speed > 0.0 ? driving_speed : motion_.frameMotion().translation().norm();
 }
 
 std::vector<FramePose> Odometry::flush() {
@@ -141,7 +94,7 @@ std::vector<FramePose> Odometry::flush() {
     FramePose pose;
     pose.index = waiting.frame->index;
     pose.time = waiting.frame->time;
-    pose.T_world_cam = predict(*waiting.frame);
+    pose.T_world_cam = motion_.predict(stampOf(*waiting.frame));
     pose.state = OdometryState::kInitializing;
     pose.tracking_ms = waiting.ms;
     poses.push_back(pose);
@@ -150,138 +103,9 @@ std::vector<FramePose> Odometry::flush() {
   return poses;
 }
 
-void Odometry::startInitialization(const std::shared_ptr<const OdometryFrame>& frame) {
-  const auto start = std::chrono::steady_clock::now();
-  waiting_ = {{frame, 0.0}};
-  std::vector<Eigen::Vector2f> pixels;
-  for (const MapPoint& point : frame->candidates) pixels.emplace_back(point.u, point.v);
-  // A loss on a car is mostly traffic filling the view, and the largest consensus of the next frames
-  // may be its motion: the new map must travel forward (not the estimate before the loss: traffic
-  // may have dragged it off already).
-  const ForwardMotionOptions& forward = options_.tracker.forward_motion;
-  initializer_.reset(gray8(*frame), pixels, recovering_ && forward.sigma_deg > 0.0 ? forward.axis() : Eigen::Vector3d::Zero());
-  waiting_.front().ms = elapsedMs(start);
-}
-
-std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const OdometryFrame>& frame,
-                                            std::chrono::steady_clock::time_point start) {
-  state_ = OdometryState::kInitializing;
-  if (waiting_.empty()) {
-    startInitialization(frame);
-    waiting_.front().ms = elapsedMs(start);
-    return {};
-  }
-  const TwoViewInitializer::Status status = initializer_.add(gray8(*frame));
-  waiting_.push_back({frame, elapsedMs(start)});
-  if (status == TwoViewInitializer::Status::kNeedMoreFrames) return {};
-  if (status == TwoViewInitializer::Status::kFailed) {
-    // The waiting frames get untrusted predictions; the newest starts the next attempt.
-    const WaitingFrame newest = waiting_.back();
-    waiting_.pop_back();
-    std::vector<FramePose> poses = flush();
-    for (const FramePose& pose : poses) remember(pose);
-    startInitialization(newest.frame);
-    waiting_.front().ms += newest.ms;
-    return poses;
-  }
-  const auto keyframe_start = std::chrono::steady_clock::now();
-
-  // The first waiting frame becomes the first keyframe, anchored where the odometry predicts it
-  // (identity at the very start), so that odom stays continuous after a loss.
-  Eigen::Isometry3d T_last_first = initializer_.T_last_first();
-  double depth_scale = 1.0;
-  bool scale_carried = false;
-  if (recovering_ && poses_seen_ >= 2) {
-    const double speed = speed_at_restart_;  // per frame interval
-    const double baseline = T_last_first.translation().norm();
-    scale_carried = speed > 0.0 && baseline > 0.0;
-    if (scale_carried) depth_scale = speed * framesBetween(stampOf(*waiting_.front().frame), stampOf(*waiting_.back().frame)) / baseline;
-  }
-  if (!scale_carried) driving_motions_.clear();  // travel at another map's scale
-  T_last_first.translation() *= depth_scale;
-  const Eigen::Isometry3d T_world_first = predict(*waiting_.front().frame);
-
-  auto keyframe = std::make_shared<Keyframe>();
-  keyframe->id = next_keyframe_id_++;
-  keyframe->T_world_cam = T_world_first;
-  keyframe->frame = waiting_.front().frame;
-  takeCandidates(keyframe.get());
-  const std::vector<double>& inverse_depths = initializer_.inverseDepths();
-  for (std::size_t i = 0; i < keyframe->points.size(); ++i) {
-    if (!(inverse_depths[i] > 0.0)) continue;
-    MapPoint& point = keyframe->points[i];
-    point.inverse_depth = inverse_depths[i] / depth_scale;
-    point.inverse_depth_variance = std::pow(0.1 * point.inverse_depth, 2);
-    point.observations = 1;
-  }
-  std::vector<DepthSample> samples;
-  for (const MapPoint& point : keyframe->points)
-    if (point.hasDepth()) samples.push_back({Eigen::Vector2d(point.u, point.v), point.inverse_depth});
-  propagateDepths(samples, camera_, options_.depth_neighbour_radius, 1.0 / options_.initializer.median_depth, &keyframe->points);
-  keyframes_.push_back(keyframe);
-  setActiveKeyframe(keyframe);
-
-  std::vector<FramePose> poses;
-  FramePose first;
-  first.index = keyframe->frame->index;
-  first.time = keyframe->frame->time;
-  first.T_world_cam = T_world_first;
-  first.trusted = true;
-  first.state = OdometryState::kTracking;
-  first.recovered = recovering_;
-  first.keyframe = true;
-  first.keyframe_id = keyframe->id;
-  first.tracking_ms = waiting_.front().ms;
-  first.mapping_ms = elapsedMs(keyframe_start);
-  poses.push_back(first);
-  remember(first);
-  const std::size_t n = waiting_.size();
-  for (std::size_t j = 1; j < n; ++j) {
-    const auto frame_start = std::chrono::steady_clock::now();
-    const Eigen::Isometry3d guess = se3Exp(static_cast<double>(j) / static_cast<double>(n - 1) * se3Log(T_last_first));
-    const OdometryFrame& frame_j = *waiting_[j].frame;
-    const TrackingResult result = tracker_.track(*frame_j.pyramid, frame_j.fieldOrNull(), {guess});
-    FramePose pose;
-    pose.index = frame_j.index;
-    pose.time = frame_j.time;
-    pose.T_world_cam = orthonormalized(T_world_first * result.T_cam_kf.inverse());
-    pose.trusted = result.ok;
-    pose.state = result.ok ? OdometryState::kTracking : OdometryState::kLost;
-    pose.keyframe_id = keyframe->id;
-    pose.tracking = result;
-    pose.tracking_ms = waiting_[j].ms + elapsedMs(frame_start);
-    const auto mapping_start = std::chrono::steady_clock::now();
-    if (result.ok) {
-      refineDepths(frame_j, result.T_cam_kf);
-      followCorners(frame_j);
-    }
-    pose.mapping_ms = elapsedMs(mapping_start);
-    poses.push_back(pose);
-    remember(pose);
-  }
-  waiting_.clear();
-  state_ = OdometryState::kTracking;
-  recovering_ = relocalizing_ = false;
-  frames_since_keyframe_ = static_cast<int>(n) - 1;
-  return poses;
-}
-
 std::vector<Eigen::Isometry3d> Odometry::guesses(const Keyframe& keyframe, const OdometryFrame& frame) const {
-  std::vector<Eigen::Isometry3d> world_poses = {T_world_last_};
-  if (poses_seen_ >= 2) {
-    const Vector6d velocity = se3Log(frameMotion());
-    const double n = framesToExtrapolate(frame);
-    // Constant velocity first, then no motion, half and double the velocity.
-    world_poses = {T_world_last_ * se3Exp(n * velocity), T_world_last_, T_world_last_ * se3Exp(0.5 * n * velocity),
-                   T_world_last_ * se3Exp(2.0 * n * velocity)};
-    // Standing, or nearly: the guesses above all say "no motion". A car drives off the way it came:
-    // one frame's travel at the speed it drove at before is one more (a start that the frames caught
-    // late, or dropped; not times the frames missed: a car starting from rest covers less).
-    const Vector6d driving = drivingMotion();
-    if (velocity.head<3>().norm() < kStandingFraction * driving.head<3>().norm()) world_poses.push_back(T_world_last_ * se3Exp(driving));
-  }
   std::vector<Eigen::Isometry3d> guesses;
-  for (const Eigen::Isometry3d& T_world_cam : world_poses) guesses.push_back(T_world_cam.inverse() * keyframe.T_world_cam);
+  for (const Eigen::Isometry3d& T_world_cam : motion_.guesses(stampOf(frame))) guesses.push_back(T_world_cam.inverse() * keyframe.T_world_cam);
   return guesses;
 }
 
@@ -317,10 +141,10 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
 }
 
 FrameAgreement Odometry::agreementOf(const OdometryFrame& frame, const TrackingResult& result) const {
-  const Eigen::Isometry3d T_last_world = T_world_last_.inverse();
+  const Eigen::Isometry3d T_last_world = motion_.lastPose().inverse();
   const Eigen::Vector3d travel = (T_last_world * active_->T_world_cam * result.T_cam_kf.inverse()).translation();
-  const Eigen::Vector3d predicted = (T_last_world * predict(frame)).translation();
-  const double usual_travel = drivingMotion().head<3>().norm() * framesBetween(last_stamp_, stampOf(frame));
+  const Eigen::Vector3d predicted = (T_last_world * motion_.predict(stampOf(frame))).translation();
+  const double usual_travel = motion_.drivingMotion().head<3>().norm() * motion_.framesBetween(motion_.lastStamp(), stampOf(frame));
   const double usual_ratio = recent_inlier_ratios_.empty() ? 0.0 : median({recent_inlier_ratios_.begin(), recent_inlier_ratios_.end()});
   return compareWithRecentFrames(result.inlierRatio(), usual_ratio, options_.tracker.accept_inlier_ratio, travel, predicted,
                                  usual_travel, options_.consistency);
@@ -367,7 +191,7 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   if (!pose.tracking.ok) {
     // Lost: report the prediction, untrusted; from the next frame on, try the map it had until a
     // new initialisation succeeds.
-    pose.T_world_cam = predict(*frame);
+    pose.T_world_cam = motion_.predict(stampOf(*frame));
     pose.state = OdometryState::kLost;
     restart();
     relocalizing_ = true;
@@ -399,7 +223,7 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
 }
 
 FramePose Odometry::untrustedPose(const OdometryFrame& frame, FramePose pose) {
-  pose.T_world_cam = predict(frame);
+  pose.T_world_cam = motion_.predict(stampOf(frame));
   pose.trusted = false;
   pose.state = OdometryState::kUntrusted;
   if (++untrusted_in_a_row_ > options_.consistency.max_untrusted_frames) {
@@ -423,122 +247,10 @@ double Odometry::travelParallax(const Keyframe& keyframe, const Eigen::Isometry3
   return median(flows);
 }
 
-std::shared_ptr<const SharedClassEdgeTest> Odometry::refineDepths(const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf) {
-  const PyramidLevel& host = active_->frame->pyramid->level(0);
-  const PyramidLevel& target = frame.pyramid->level(0);
-  std::shared_ptr<const SharedClassEdgeTest> edges = edgeTestOf(frame, options_.epipolar.edge_radius);
-  measureDepths(host, {&target, edges.get(), T_frame_kf}, &active_->points);
-  tracker_.setKeyframe(active_);
-  return edges;
-}
-
-bool Odometry::makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, std::shared_ptr<const SharedClassEdgeTest> frame_edges,
-                            FramePose* pose) {
-  // One deferred optimisation at a time: the previous one is merged first, and the new keyframe,
-  // tracked against the active one, moves with it.
-  if (deferred_window_.running()) pose->T_world_cam = mergeWindow(pose) * pose->T_world_cam;
-  auto keyframe = std::make_shared<Keyframe>();
-  keyframe->T_world_cam = pose->T_world_cam;
-  keyframe->frame = frame;
-  // Its points triangulated from the tracked pose must see the map at the map's scale: a keyframe
-  // whose depths disagree with it by more than the bound would hand the next frames a new scale.
-  pose->keyframe_scale = triangulatePoints(keyframe.get(), *active_);
-  if (std::abs(std::log(pose->keyframe_scale)) > std::log1p(options_.consistency.max_keyframe_scale_change)) return false;
-  std::vector<MapPoint> from_tracked_pose = std::move(keyframe->points);
-  keyframe->points.clear();
-  keyframe->id = next_keyframe_id_++;
-  keyframe->edge_test = std::move(frame_edges);
-  keyframe->measured_motion = keyframe_motion_.measure(frame->index, (active_->T_world_cam.inverse() * keyframe->T_world_cam).linear());
-  reanchor(keyframe->measured_motion, options_.keyframe_motion, active_->T_world_cam, &keyframe->T_world_cam);
-  keyframes_.push_back(keyframe);
-  while (static_cast<int>(keyframes_.size()) > options_.window_size) keyframes_.pop_front();
-  // The window settles the new pose against the older keyframes' points before the new points are
-  // triangulated from it: points triangulated from the tracked pose agree with its error and would
-  // pin it there (a yaw error leaves a left-right depth gradient that makes the next yaw error).
-  if (options_.optimize_window) optimizeWindow(frame->index, pose);
-  // Triangulated again unless nothing moved since (the window deferred or off, no re-anchoring).
-  const bool settled_in_line = options_.optimize_window && options_.window_delay == 0;
-  if (settled_in_line || !keyframe->T_world_cam.isApprox(pose->T_world_cam)) triangulatePoints(keyframe.get(), *active_);
-  else keyframe->points = std::move(from_tracked_pose);
-  setActiveKeyframe(keyframe);
-  frames_since_keyframe_ = 0;
-  pose->T_world_cam = keyframe->T_world_cam;
-  return true;
-}
-
-double Odometry::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const {
-  takeCandidates(keyframe);
-  // Prior depths: the previous keyframe's measured points, seen from the new keyframe.
-  const Eigen::Isometry3d T_new_old = keyframe->T_world_cam.inverse() * previous.T_world_cam;
-  std::vector<DepthSample> samples;
-  for (const MapPoint& point : previous.points) {
-    if (!point.hasDepth()) continue;
-    const Eigen::Vector3d p = T_new_old * camera_.backProject(point.u, point.v, 1.0 / point.inverse_depth);
-    const Eigen::Vector2d pixel = camera_.project(p);
-    if (p.z() > 1e-3 && camera_.contains(pixel.x(), pixel.y())) samples.push_back({pixel, 1.0 / p.z()});
-  }
-  propagateDepths(samples, camera_, options_.depth_neighbour_radius, 1.0 / options_.initializer.median_depth, &keyframe->points);
-  std::vector<double> priors(keyframe->points.size(), 0.0);  // of the points with map points near
-  for (std::size_t i = 0; i < priors.size(); ++i)
-    if (keyframe->points[i].inverse_depth_variance < std::pow(0.75 * keyframe->points[i].inverse_depth, 2)) priors[i] = keyframe->points[i].inverse_depth;
-  const PyramidLevel& host = keyframe->frame->pyramid->level(0);
-  const std::shared_ptr<const SharedClassEdgeTest> previous_edges =
-      previous.edge_test ? previous.edge_test : edgeTestOf(*previous.frame, options_.epipolar.edge_radius);
-  measureDepths(host, {&previous.frame->pyramid->level(0), previous_edges.get(), T_new_old.inverse()}, &keyframe->points);
-  std::vector<double> ratios;  // inverse depths measured over the map's
-  for (std::size_t i = 0; i < priors.size(); ++i)
-    if (priors[i] > 0.0 && keyframe->points[i].observations > 0) ratios.push_back(keyframe->points[i].inverse_depth / priors[i]);
-  constexpr std::size_t kMinRatios = 20;  // fewer: no say on the scale
-  return ratios.size() < kMinRatios ? 1.0 : 1.0 / median(ratios);
-}
-
-void Odometry::measureDepths(const PyramidLevel& host, const EpipolarTarget& target, std::vector<MapPoint>* points) const {
-  // Each point is searched and filtered on its own: both cores, same result as in order.
-  forEachIndex(points->size(), [&](std::size_t i) {
-    DepthMeasurement measurement;
-    MapPoint& point = (*points)[i];
-    if (searchEpipolar(point, host, *target.level, target.edges, target.T_target_host, options_.epipolar, &measurement))
-      fuseDepth(measurement, &point);
-  });
-}
-
-void Odometry::optimizeWindow(int frame_index, FramePose* pose) {
-  if (options_.window_delay > 0) {
-    deferred_window_.start(keyframes_);
-    merge_window_at_ = frame_index + options_.window_delay;
-    return;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  window_optimizer_.optimize(keyframes_);
-  pose->window_ms += elapsedMs(start);
-}
-
-Eigen::Isometry3d Odometry::mergeWindow(FramePose* pose) {
-  const DeferredWindowOptimization::Merge merge = deferred_window_.finish(keyframes_);
-  pose->window_ms += merge.optimization_ms;
-  pose->mapping_ms += merge.waited_ms;
-  const auto moved = merge.corrections.find(active_->id);
-  if (moved == merge.corrections.end()) return Eigen::Isometry3d::Identity();
-  const Eigen::Isometry3d& correction = moved->second;
-  T_world_last_ = orthonormalized(correction * T_world_last_);
-  T_world_before_ = orthonormalized(correction * T_world_before_);
-  // The optimisation settled the active keyframe's pose without its points (see makeKeyframe), which
-  // were triangulated from the tracked pose meanwhile: triangulate them again from the settled one.
-  if (keyframes_.size() >= 2) triangulatePoints(active_.get(), *keyframes_[keyframes_.size() - 2]);
-  return correction;
-}
-
 void Odometry::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {
   active_ = std::move(keyframe);
   tracker_.setKeyframe(active_);
   if (keyframe_motion_.enabled()) keyframe_motion_.start(active_->id, active_->frame->index, gray8(*active_->frame));
-}
-
-void Odometry::takeCandidates(Keyframe* keyframe) const {
-  keyframe->points = keyframe->frame->candidates;
-  const int all_edges_layer = keyframe->frame->has_field ? keyframe->frame->field.all_edges_layer : -1;
-  for (MapPoint& point : keyframe->points)
-    if (point.isEdge()) point.field_layers = class_reliability_.fieldLayers(point.class_mask, all_edges_layer);
 }
 
 void Odometry::followCorners(const OdometryFrame& frame) {
@@ -546,61 +258,8 @@ void Odometry::followCorners(const OdometryFrame& frame) {
 }
 
 void Odometry::remember(const FramePose& pose) {
-  T_world_before_ = T_world_last_;
-  T_world_last_ = orthonormalized(pose.T_world_cam);
-  before_stamp_ = last_stamp_;
-  last_stamp_ = {pose.index, pose.time};
-  if (pose.trusted) last_trusted_stamp_ = last_stamp_;
-  ++poses_seen_;
-  const int indices = last_stamp_.index - before_stamp_.index;
-  const double seconds = last_stamp_.time - before_stamp_.time;
-  if (poses_seen_ >= 2 && indices > 0 && seconds > 0.0) keepLast(seconds / indices, kFrameIntervals, &frame_intervals_);
+  motion_.remember(pose.T_world_cam, {pose.index, pose.time}, pose.trusted);
   if (pose.trusted && pose.tracking.ok) keepLast(pose.tracking.inlierRatio(), kRecentInlierRatios, &recent_inlier_ratios_);
-  if (!pose.trusted || poses_seen_ < 2) return;
-  // Only motions of a driving camera are kept: the store outlasts a stop of any length.
-  Vector6d motion = se3Log(frameMotion());
-  if (motion.head<3>().norm() < kStandingFraction * drivingMotion().head<3>().norm()) return;
-  motion.tail<3>().setZero();  // the travel; a turn it made then says nothing of the start
-  keepLast(motion, kDrivingMotions, &driving_motions_);
-}
-
-double Odometry::framesBetween(const FrameStamp& from, const FrameStamp& to) const {
-  const double interval = median({frame_intervals_.begin(), frame_intervals_.end()});
-  const double frames = interval > 0.0 ? (to.time - from.time) / interval : static_cast<double>(to.index - from.index);
-  return frames >= 1.0 ? std::round(frames) : 1.0;  // also 1 for a stamp that is not a number
-}
-
-double Odometry::framesToExtrapolate(const OdometryFrame& frame) const {
-  // Dead reckoning ends kMaxDeadReckoning frames after the last trusted pose: the car may have
-  // stopped since (a loss it never finds its map again from would otherwise drive on for ever).
-  const double since_trusted = last_stamp_.index == last_trusted_stamp_.index ? 0.0 : framesBetween(last_trusted_stamp_, last_stamp_);
-  const double left = std::max(0.0, static_cast<double>(kMaxDeadReckoning) - since_trusted);
-  return std::min(framesBetween(last_stamp_, stampOf(frame)), left);
-}
-
-Eigen::Isometry3d Odometry::frameMotion() const {
-  if (poses_seen_ < 2) return Eigen::Isometry3d::Identity();
-  const Eigen::Isometry3d motion = T_world_before_.inverse() * T_world_last_;
-  const double frames = framesBetween(before_stamp_, last_stamp_);
-  return frames == 1.0 ? motion : se3Exp(se3Log(motion) / frames);  // frames dropped between them: the mean
-}
-
-Eigen::Isometry3d Odometry::predict(const OdometryFrame& frame) const {
-  const double frames = framesToExtrapolate(frame);
-  if (frames == 1.0) return T_world_last_ * frameMotion();
-  return T_world_last_ * se3Exp(frames * se3Log(frameMotion()));
-}
-
-Vector6d Odometry::drivingMotion(std::size_t newest) const {
-  if (driving_motions_.empty()) return Vector6d::Zero();
-  // The median by length: one jump (dropped frames, a correction) does not make it.
-  std::vector<const Vector6d*> sorted;
-  for (auto motion = driving_motions_.end() - static_cast<std::ptrdiff_t>(std::min(newest, driving_motions_.size()));
-       motion != driving_motions_.end(); ++motion)
-    sorted.push_back(&*motion);
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end(),
-                   [](const Vector6d* a, const Vector6d* b) { return a->head<3>().norm() < b->head<3>().norm(); });
-  return *sorted[sorted.size() / 2];
 }
 
 }  // namespace semantic_edge_vo

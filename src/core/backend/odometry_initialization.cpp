@@ -1,0 +1,143 @@
+// Odometry: the two-view initialisation, the first keyframe and the frames that waited for it.
+#include <chrono>
+#include <cmath>
+
+#include "odometry_detail.h"
+#include "semantic_edge_vo/backend/odometry.h"
+
+namespace semantic_edge_vo {
+
+using odometry_detail::DepthSample;
+using odometry_detail::elapsedMs;
+using odometry_detail::gray8;
+using odometry_detail::propagateDepths;
+
+void Odometry::startInitialization(const std::shared_ptr<const OdometryFrame>& frame) {
+  const auto start = std::chrono::steady_clock::now();
+  waiting_ = {{frame, 0.0}};
+  std::vector<Eigen::Vector2f> pixels;
+  for (const MapPoint& point : frame->candidates) pixels.emplace_back(point.u, point.v);
+  // A loss on a car is mostly traffic filling the view, and the largest consensus of the next frames
+  // may be its motion: the new map must travel forward (not the estimate before the loss: traffic
+  // may have dragged it off already).
+  const ForwardMotionOptions& forward = options_.tracker.forward_motion;
+  initializer_.reset(gray8(*frame), pixels, recovering_ && forward.sigma_deg > 0.0 ? forward.axis() : Eigen::Vector3d::Zero());
+  waiting_.front().ms = elapsedMs(start);
+}
+
+std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const OdometryFrame>& frame,
+                                            std::chrono::steady_clock::time_point start) {
+  state_ = OdometryState::kInitializing;
+  if (waiting_.empty()) {
+    startInitialization(frame);
+    waiting_.front().ms = elapsedMs(start);
+    return {};
+  }
+  const TwoViewInitializer::Status status = initializer_.add(gray8(*frame));
+  waiting_.push_back({frame, elapsedMs(start)});
+  if (status == TwoViewInitializer::Status::kNeedMoreFrames) return {};
+  if (status == TwoViewInitializer::Status::kFailed) {
+    // The waiting frames get untrusted predictions; the newest starts the next attempt.
+    const WaitingFrame newest = waiting_.back();
+    waiting_.pop_back();
+    std::vector<FramePose> poses = flush();
+    for (const FramePose& pose : poses) remember(pose);
+    startInitialization(newest.frame);
+    waiting_.front().ms += newest.ms;
+    return poses;
+  }
+  const auto keyframe_start = std::chrono::steady_clock::now();
+  Eigen::Isometry3d T_last_first;
+  const std::shared_ptr<const Keyframe> keyframe = makeFirstKeyframe(&T_last_first);
+  return posesOfWaitingFrames(*keyframe, T_last_first, elapsedMs(keyframe_start));
+}
+
+std::shared_ptr<const Keyframe> Odometry::makeFirstKeyframe(Eigen::Isometry3d* T_last_first_out) {
+  // The first waiting frame becomes the first keyframe, anchored where the odometry predicts it
+  // (identity at the very start), so that odom stays continuous after a loss.
+  Eigen::Isometry3d T_last_first = initializer_.T_last_first();
+  double depth_scale = 1.0;
+  bool scale_carried = false;
+  if (recovering_ && motion_.posesSeen() >= 2) {
+    const double speed = speed_at_restart_;  // per frame interval
+    const double baseline = T_last_first.translation().norm();
+    scale_carried = speed > 0.0 && baseline > 0.0;
+    if (scale_carried) depth_scale = speed * motion_.framesBetween(stampOf(*waiting_.front().frame), stampOf(*waiting_.back().frame)) / baseline;
+  }
+  if (!scale_carried) motion_.forgetDrivingMotions();  // travel at another map's scale
+  T_last_first.translation() *= depth_scale;
+  const Eigen::Isometry3d T_world_first = motion_.predict(stampOf(*waiting_.front().frame));
+
+  auto keyframe = std::make_shared<Keyframe>();
+  keyframe->id = next_keyframe_id_++;
+  keyframe->T_world_cam = T_world_first;
+  keyframe->frame = waiting_.front().frame;
+  takeCandidates(keyframe.get());
+  const std::vector<double>& inverse_depths = initializer_.inverseDepths();
+  for (std::size_t i = 0; i < keyframe->points.size(); ++i) {
+    if (!(inverse_depths[i] > 0.0)) continue;
+    MapPoint& point = keyframe->points[i];
+    point.inverse_depth = inverse_depths[i] / depth_scale;
+    point.inverse_depth_variance = std::pow(0.1 * point.inverse_depth, 2);
+    point.observations = 1;
+  }
+  std::vector<DepthSample> samples;
+  for (const MapPoint& point : keyframe->points)
+    if (point.hasDepth()) samples.push_back({Eigen::Vector2d(point.u, point.v), point.inverse_depth});
+  propagateDepths(samples, camera_, options_.depth_neighbour_radius, 1.0 / options_.initializer.median_depth, &keyframe->points);
+  keyframes_.push_back(keyframe);
+  setActiveKeyframe(keyframe);
+
+  *T_last_first_out = T_last_first;
+  return keyframe;
+}
+
+std::vector<FramePose> Odometry::posesOfWaitingFrames(const Keyframe& keyframe, const Eigen::Isometry3d& T_last_first,
+                                                      double keyframe_ms) {
+  const Eigen::Isometry3d& T_world_first = keyframe.T_world_cam;
+  std::vector<FramePose> poses;
+  FramePose first;
+  first.index = keyframe.frame->index;
+  first.time = keyframe.frame->time;
+  first.T_world_cam = T_world_first;
+  first.trusted = true;
+  first.state = OdometryState::kTracking;
+  first.recovered = recovering_;
+  first.keyframe = true;
+  first.keyframe_id = keyframe.id;
+  first.tracking_ms = waiting_.front().ms;
+  first.mapping_ms = keyframe_ms;
+  poses.push_back(first);
+  remember(first);
+  const std::size_t n = waiting_.size();
+  for (std::size_t j = 1; j < n; ++j) {
+    const auto frame_start = std::chrono::steady_clock::now();
+    const Eigen::Isometry3d guess = se3Exp(static_cast<double>(j) / static_cast<double>(n - 1) * se3Log(T_last_first));
+    const OdometryFrame& frame_j = *waiting_[j].frame;
+    const TrackingResult result = tracker_.track(*frame_j.pyramid, frame_j.fieldOrNull(), {guess});
+    FramePose pose;
+    pose.index = frame_j.index;
+    pose.time = frame_j.time;
+    pose.T_world_cam = orthonormalized(T_world_first * result.T_cam_kf.inverse());
+    pose.trusted = result.ok;
+    pose.state = result.ok ? OdometryState::kTracking : OdometryState::kLost;
+    pose.keyframe_id = keyframe.id;
+    pose.tracking = result;
+    pose.tracking_ms = waiting_[j].ms + elapsedMs(frame_start);
+    const auto mapping_start = std::chrono::steady_clock::now();
+    if (result.ok) {
+      refineDepths(frame_j, result.T_cam_kf);
+      followCorners(frame_j);
+    }
+    pose.mapping_ms = elapsedMs(mapping_start);
+    poses.push_back(pose);
+    remember(pose);
+  }
+  waiting_.clear();
+  state_ = OdometryState::kTracking;
+  recovering_ = relocalizing_ = false;
+  frames_since_keyframe_ = static_cast<int>(n) - 1;
+  return poses;
+}
+
+}  // namespace semantic_edge_vo
