@@ -17,6 +17,50 @@ std::string EpipolarSearchOptions::validate() const {
   return error.str();
 }
 
+namespace {
+
+/// The pattern around (u, v), its mean subtracted.
+void zeroMeanPattern(const cv::Mat& intensity, float u, float v, float pattern[kPattern]) {
+  float mean = 0.0f;
+  for (int j = 0; j < kPattern; ++j) {
+    pattern[j] = sampleBilinear(intensity, u + kPatternOffsets[j][0], v + kPatternOffsets[j][1]);
+    mean += pattern[j] / kPattern;
+  }
+  for (int j = 0; j < kPattern; ++j) pattern[j] -= mean;
+}
+
+/// The depth measured at the best of the line's positions (half-pixel steps from rho_min to rho_max,
+/// `line_pixels` long) when its pattern error is small and unique, refined between the steps.
+bool measureAtBest(const std::vector<double>& errors, int best, double rho_min, double rho_max, double line_pixels, double alignment,
+                   const EpipolarSearchOptions& options, DepthMeasurement* measurement) {
+  const int steps = static_cast<int>(errors.size()) - 1;
+  const double best_error = errors[static_cast<std::size_t>(best)];
+  if (std::sqrt(best_error / kPattern) > options.max_pattern_error) return false;
+  // Unique: nothing nearly as good farther than two pixels (four half-pixel steps) away.
+  double second = std::numeric_limits<double>::max();
+  for (int s = 0; s <= steps; ++s)
+    if (std::abs(s - best) > 4) second = std::min(second, errors[static_cast<std::size_t>(s)]);
+  if (second < options.min_second_best_ratio * best_error + 1e-9) return false;
+
+  // Sub-step refinement: a parabola through the best error and its neighbours.
+  double offset = 0.0;
+  if (best > 0 && best < steps) {
+    const double e0 = errors[static_cast<std::size_t>(best - 1)], e2 = errors[static_cast<std::size_t>(best + 1)];
+    const double curvature = e0 - 2.0 * best_error + e2;
+    if (e0 < std::numeric_limits<double>::max() && e2 < std::numeric_limits<double>::max() && curvature > 0)
+      offset = std::clamp(0.5 * (e0 - e2) / curvature, -0.5, 0.5);
+  }
+  const double step_rho = (rho_max - rho_min) / steps;
+  measurement->inverse_depth = rho_min + (best + offset) * step_rho;
+  const double pixels_per_step = line_pixels / steps;
+  const double rho_per_pixel = step_rho / pixels_per_step;
+  const double pixel_sigma = options.pixel_sigma / alignment;
+  measurement->variance = rho_per_pixel * rho_per_pixel * pixel_sigma * pixel_sigma;
+  return measurement->inverse_depth > 0.0;
+}
+
+}  // namespace
+
 bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const PyramidLevel& target,
                     const SharedClassEdgeTest* target_edges, const Eigen::Isometry3d& T_target_host,
                     const EpipolarSearchOptions& options, DepthMeasurement* measurement) {
@@ -24,12 +68,7 @@ bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const Pyram
   // Zero-mean intensity patterns: more distinctive along the line than gradient magnitude (an edge
   // looks alike on both of its sides there), and insensitive to exposure offsets.
   float reference[kPattern];
-  float reference_mean = 0.0f;
-  for (int j = 0; j < kPattern; ++j) {
-    reference[j] = sampleBilinear(host.intensity, point.u + kPatternOffsets[j][0], point.v + kPatternOffsets[j][1]);
-    reference_mean += reference[j] / kPattern;
-  }
-  for (float& value : reference) value -= reference_mean;
+  zeroMeanPattern(host.intensity, point.u, point.v, reference);
 
   // The point at inverse depth rho is R * ray + rho * t (up to scale): its pixel moves along the line.
   // Each pattern pixel has its own ray, so the pattern is warped as the depth would warp it (forward
@@ -111,29 +150,7 @@ bool searchEpipolar(const MapPoint& point, const PyramidLevel& host, const Pyram
   // any edge will do then, rather than no measurement (the paper's soft association, Sec. III-B).
   if (scanLine(point.field_layers) == 0 && edge_gated && target_edges->classRestricted()) scanLine(kAllClasses);
   if (best < 0) return false;
-  const double best_error = errors[static_cast<std::size_t>(best)];
-  if (std::sqrt(best_error / kPattern) > options.max_pattern_error) return false;
-  // Unique: nothing nearly as good farther than two pixels (four half-pixel steps) away.
-  double second = std::numeric_limits<double>::max();
-  for (int s = 0; s <= steps; ++s)
-    if (std::abs(s - best) > 4) second = std::min(second, errors[static_cast<std::size_t>(s)]);
-  if (second < options.min_second_best_ratio * best_error + 1e-9) return false;
-
-  // Sub-step refinement: a parabola through the best error and its neighbours.
-  double offset = 0.0;
-  if (best > 0 && best < steps) {
-    const double e0 = errors[static_cast<std::size_t>(best - 1)], e2 = errors[static_cast<std::size_t>(best + 1)];
-    const double curvature = e0 - 2.0 * best_error + e2;
-    if (e0 < std::numeric_limits<double>::max() && e2 < std::numeric_limits<double>::max() && curvature > 0)
-      offset = std::clamp(0.5 * (e0 - e2) / curvature, -0.5, 0.5);
-  }
-  const double step_rho = (rho_max - rho_min) / steps;
-  measurement->inverse_depth = rho_min + (best + offset) * step_rho;
-  const double pixels_per_step = (b - a).norm() / steps;
-  const double rho_per_pixel = step_rho / pixels_per_step;
-  const double pixel_sigma = options.pixel_sigma / alignment;
-  measurement->variance = rho_per_pixel * rho_per_pixel * pixel_sigma * pixel_sigma;
-  return measurement->inverse_depth > 0.0;
+  return measureAtBest(errors, best, rho_min, rho_max, (b - a).norm(), alignment, options, measurement);
 }
 
 bool fuseDepth(const DepthMeasurement& measurement, MapPoint* point) {

@@ -31,6 +31,108 @@ bool associate(const NearestNeighborFieldView& field, std::uint32_t layers, cons
   return found;
 }
 
+
+/// A point of the window, by its host (position in the window) and index: inverse depths live in a
+/// vector parallel to these, so that they are written back.
+struct PointRef {
+  std::size_t host;
+  std::size_t index;
+};
+
+/// Priors on each pair of consecutive keyframes: the forward motion of a car, and the rotation and
+/// direction of travel their corners measured (KeyframeMotion).
+void addMeasuredMotionPriors(const WindowOptimizerOptions& options, const std::deque<std::shared_ptr<Keyframe>>& window,
+                             std::size_t first, ceres::LossFunction* measured_motion_loss,
+                             std::vector<factors::PoseParameters>* poses_out, ceres::Problem* problem) {
+  std::vector<factors::PoseParameters>& poses = *poses_out;
+  const std::size_t count = window.size() - first;
+  for (std::size_t k = 1; k < count; ++k) {
+    const Keyframe& earlier = *window[first + k - 1];
+    const Keyframe& later = *window[first + k];
+    if (options.forward_motion.sigma_deg > 0.0)
+      problem->AddResidualBlock(factors::forwardMotionFactor(options.forward_motion, earlier.T_world_cam, later.T_world_cam), nullptr,
+                               poses[k - 1].data(), poses[k].data());
+    const MeasuredMotion& measured = later.measured_motion;
+    if (measured.from_id != earlier.id) continue;
+    if (options.measured_rotation_sigma_deg > 0.0)
+      problem->AddResidualBlock(new factors::RelativeRotationFactor(measured.R_from_this, options.measured_rotation_sigma_deg * M_PI / 180.0),
+                               measured_motion_loss, poses[k - 1].data(), poses[k].data());
+    if (options.measured_direction_sigma_deg > 0.0) {
+      const double distance = (later.T_world_cam.translation() - earlier.T_world_cam.translation()).norm();
+      problem->AddResidualBlock(
+          new factors::TravelDirectionFactor(measured.direction, options.measured_direction_sigma_deg * M_PI / 180.0, distance),
+          measured_motion_loss, poses[k - 1].data(), poses[k].data());
+    }
+  }
+}
+
+/// Each point's observations in the other keyframes (projection, nearest edge of its layers), found
+/// on both cores in slots of their own (count - 1 per point, `found_count` of them used) and
+/// returned in order; each point's inverse depth is copied into `inverse_depths`.
+std::vector<factors::Observation> observePoints(const WindowOptimizerOptions& options, const std::deque<std::shared_ptr<Keyframe>>& window,
+                                                std::size_t first, const std::vector<PointRef>& refs, std::vector<double>* inverse_depths_out,
+                                                std::vector<std::size_t>* found_count_out) {
+  std::vector<double>& inverse_depths = *inverse_depths_out;
+  const std::size_t count = window.size() - first;
+  const PinholeCamera& camera = window[first]->frame->pyramid->level(0).camera;
+  std::vector<Eigen::Isometry3d> T_target_host(count * count);  // [host * count + target]
+  for (std::size_t h = 0; h < count; ++h)
+    for (std::size_t t = 0; t < count; ++t) T_target_host[h * count + t] = window[first + t]->T_world_cam.inverse() * window[first + h]->T_world_cam;
+  const std::size_t slots = count - 1;
+  std::vector<factors::Observation> found(refs.size() * slots);
+  std::vector<std::size_t>& found_count = *found_count_out;
+  found_count.assign(refs.size(), 0);
+  forEachIndex(refs.size(), [&](std::size_t r) {
+    const Keyframe& host = *window[first + refs[r].host];
+    const MapPoint& point = host.points[refs[r].index];
+    inverse_depths[r] = point.inverse_depth;
+    factors::Observation observation;
+    observation.host = static_cast<int>(refs[r].host);
+    observation.host_ray = camera.backProject(point.u, point.v, 1.0);
+    observation.host_value = sampleBilinear(host.frame->pyramid->level(0).gradient, point.u, point.v);
+    observation.inverse_depth = &inverse_depths[r];
+    observation.prior = point.inverse_depth;
+    observation.prior_sigma = options.depth_prior_scale * std::sqrt(point.inverse_depth_variance);
+    const Eigen::Vector3d X_host = camera.backProject(point.u, point.v, 1.0 / point.inverse_depth);
+    for (std::size_t t = 0; t < count; ++t) {
+      if (t == refs[r].host) continue;
+      const Keyframe& target = *window[first + t];
+      const Eigen::Vector3d p = T_target_host[refs[r].host * count + t] * X_host;
+      if (p.z() <= 1e-3) continue;
+      const Eigen::Vector2d pixel = camera.project(p);
+      if (!camera.contains(pixel.x(), pixel.y(), 4.0)) continue;
+      observation.target = static_cast<int>(t);
+      observation.has_prior = found_count[r] == 0;  // the point's first observation carries its prior
+      FieldMatch match;
+      observation.has_edge = point.isEdge() && options.edge_weight > 0.0 && target.frame->has_field &&
+                             associate(target.frame->field, point.field_layers, pixel, options.edge_radius, &match);
+      if (observation.has_edge) {
+        observation.match = Eigen::Vector2d(match.u, match.v);
+        observation.normal = Eigen::Vector2d(match.normal_x, match.normal_y);
+      }
+      found[r * slots + found_count[r]++] = observation;
+    }
+  });
+  return found;
+}
+
+/// Solves the window deterministically; true when the solution is usable and no worse than the start.
+bool solve(int max_iterations, ceres::Problem* problem, WindowOptimizerResult* result) {
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_SCHUR;
+  solver.max_num_iterations = max_iterations;
+  solver.num_threads = 1;  // deterministic: the observations are evaluated on both cores by the callback
+  // With bounds (the inverse depths'), Ceres follows each step with a projected line search that
+  // evaluates the Jacobians again: 40 % of the solve. The bound is still kept by projection.
+  solver.max_num_line_search_step_size_iterations = 0;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, problem, &summary);
+  result->initial_cost = summary.initial_cost;
+  result->final_cost = summary.final_cost;
+  return summary.IsSolutionUsable() && summary.final_cost <= summary.initial_cost;
+}
+
 }  // namespace
 
 std::string WindowOptimizerOptions::validate() const {
@@ -79,76 +181,17 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
   ceres::Problem problem(problem_options);
   for (factors::PoseParameters& pose : poses) problem.AddParameterBlock(pose.data(), 7, new factors::PoseManifold());
   problem.SetParameterBlockConstant(poses[0].data());
-  for (std::size_t k = 1; k < count; ++k) {
-    const Keyframe& earlier = *window[first + k - 1];
-    const Keyframe& later = *window[first + k];
-    if (options_.forward_motion.sigma_deg > 0.0)
-      problem.AddResidualBlock(factors::forwardMotionFactor(options_.forward_motion, earlier.T_world_cam, later.T_world_cam), nullptr,
-                               poses[k - 1].data(), poses[k].data());
-    const MeasuredMotion& measured = later.measured_motion;
-    if (measured.from_id != earlier.id) continue;
-    if (options_.measured_rotation_sigma_deg > 0.0)
-      problem.AddResidualBlock(new factors::RelativeRotationFactor(measured.R_from_this, options_.measured_rotation_sigma_deg * M_PI / 180.0),
-                               &measured_motion_loss, poses[k - 1].data(), poses[k].data());
-    if (options_.measured_direction_sigma_deg > 0.0) {
-      const double distance = (later.T_world_cam.translation() - earlier.T_world_cam.translation()).norm();
-      problem.AddResidualBlock(
-          new factors::TravelDirectionFactor(measured.direction, options_.measured_direction_sigma_deg * M_PI / 180.0, distance),
-          &measured_motion_loss, poses[k - 1].data(), poses[k].data());
-    }
-  }
+  addMeasuredMotionPriors(options_, window, first, &measured_motion_loss, &poses, &problem);
 
-  // Inverse depths live in a vector parallel to (host, point index) so that they are written back.
-  struct PointRef {
-    std::size_t host;
-    std::size_t index;
-  };
   std::vector<PointRef> refs;
   std::vector<double> inverse_depths;
   for (std::size_t h = 0; h < count; ++h)
     for (std::size_t i = 0; i < window[first + h]->points.size(); i += static_cast<std::size_t>(options_.point_stride))
       if (window[first + h]->points[i].hasDepth()) refs.push_back({h, i});
   inverse_depths.resize(refs.size());
-  std::vector<Eigen::Isometry3d> T_target_host(count * count);  // [host * count + target]
-  for (std::size_t h = 0; h < count; ++h)
-    for (std::size_t t = 0; t < count; ++t) T_target_host[h * count + t] = window[first + t]->T_world_cam.inverse() * window[first + h]->T_world_cam;
-
-  // Each point's observations (projection, nearest edge of a shared class) on both cores, in slots
-  // of their own; then added to the problem in order.
+  std::vector<std::size_t> found_count;
+  const std::vector<factors::Observation> found = observePoints(options_, window, first, refs, &inverse_depths, &found_count);
   const std::size_t slots = count - 1;
-  std::vector<factors::Observation> found(refs.size() * slots);
-  std::vector<std::size_t> found_count(refs.size(), 0);
-  forEachIndex(refs.size(), [&](std::size_t r) {
-    const Keyframe& host = *window[first + refs[r].host];
-    const MapPoint& point = host.points[refs[r].index];
-    inverse_depths[r] = point.inverse_depth;
-    factors::Observation observation;
-    observation.host = static_cast<int>(refs[r].host);
-    observation.host_ray = camera.backProject(point.u, point.v, 1.0);
-    observation.host_value = sampleBilinear(host.frame->pyramid->level(0).gradient, point.u, point.v);
-    observation.inverse_depth = &inverse_depths[r];
-    observation.prior = point.inverse_depth;
-    observation.prior_sigma = options_.depth_prior_scale * std::sqrt(point.inverse_depth_variance);
-    const Eigen::Vector3d X_host = camera.backProject(point.u, point.v, 1.0 / point.inverse_depth);
-    for (std::size_t t = 0; t < count; ++t) {
-      if (t == refs[r].host) continue;
-      const Keyframe& target = *window[first + t];
-      const Eigen::Vector3d p = T_target_host[refs[r].host * count + t] * X_host;
-      if (p.z() <= 1e-3) continue;
-      const Eigen::Vector2d pixel = camera.project(p);
-      if (!camera.contains(pixel.x(), pixel.y(), 4.0)) continue;
-      observation.target = static_cast<int>(t);
-      observation.has_prior = found_count[r] == 0;  // the point's first observation carries its prior
-      FieldMatch match;
-      observation.has_edge = point.isEdge() && options_.edge_weight > 0.0 && target.frame->has_field &&
-                             associate(target.frame->field, point.field_layers, pixel, options_.edge_radius, &match);
-      if (observation.has_edge) {
-        observation.match = Eigen::Vector2d(match.u, match.v);
-        observation.normal = Eigen::Vector2d(match.normal_x, match.normal_y);
-      }
-      found[r * slots + found_count[r]++] = observation;
-    }
-  });
   observations.reserve(std::accumulate(found_count.begin(), found_count.end(), std::size_t{0}));
   for (std::size_t r = 0; r < refs.size(); ++r) {
     if (found_count[r] == 0) continue;
@@ -165,19 +208,7 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
   if (result.photometric_residuals == 0) return result;
   problem.AddResidualBlock(observations.remainderBlock(), nullptr, poses.back().data());  // the newest pose is never held
 
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_SCHUR;
-  solver.max_num_iterations = options_.max_iterations;
-  solver.num_threads = 1;  // deterministic: the observations are evaluated on both cores by the callback
-  // With bounds (the inverse depths'), Ceres follows each step with a projected line search that
-  // evaluates the Jacobians again: 40 % of the solve. The bound is still kept by projection.
-  solver.max_num_line_search_step_size_iterations = 0;
-  solver.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
-  result.initial_cost = summary.initial_cost;
-  result.final_cost = summary.final_cost;
-  result.solved = summary.IsSolutionUsable() && summary.final_cost <= summary.initial_cost;
+  result.solved = solve(options_.max_iterations, &problem, &result);
   if (!result.solved) return result;
 
   for (std::size_t k = 1; k < count; ++k) window[first + k]->T_world_cam = factors::fromParameters(poses[k].data());
