@@ -77,6 +77,112 @@ On a synthetic sequence with true depths (DIR/depth/) it also checks every keyfr
 against them: OUT/keyframe_depths.txt and a summary line.
 )";
 
+/// What a run produced: the poses in frame order and its times.
+struct RunRecord {
+  std::vector<FramePose> poses;
+  std::vector<double> intake_ms, segmenter_ms;  ///< per frame
+  double processing_s = 0.0;    ///< wall time of intake + odometry, without reading the files
+  double odometry_s = 0.0;      ///< of the odometry alone (tracking + mapping; live, the intake has its own nodelet)
+  double odometry_cpu_s = 0.0;  ///< CPU time of all threads during the odometry: what the code costs, whatever the host
+  double stolen_share = -1.0;   ///< of the host's CPU time the hypervisor took during the run (< 0: unknown)
+};
+
+/// Runs the odometry over the first `frames` frames; `depth_report` (synthetic sequences) checks
+/// every keyframe's depths. Returns the error that stopped the run, empty when it ran through.
+std::string runFrames(const GraphConfig& options, SequenceInput& input, int frames, bool quiet,
+                      std::optional<KeyframeDepthReport>* depth_report, RunRecord* record) {
+  const FrameBuilder builder(options.frame, input.camera(), options.classes.names());
+  Odometry odometry(options.odometry, input.camera());
+  record->intake_ms.assign(static_cast<std::size_t>(frames), 0.0);
+  record->segmenter_ms.assign(static_cast<std::size_t>(frames), 0.0);
+  ProgressBar progress(frames, !quiet);
+  HostCpuTimes host_before, host_after;
+  const bool host_known = readHostCpuTimes(&host_before);
+  for (int i = 0; i < frames; ++i) {
+    cv::Mat gray;
+    ClassEvidence evidence;
+    if (const std::string error = input.read(static_cast<std::size_t>(i), &gray, &evidence); !error.empty())
+      return "frame " + std::to_string(i) + ": " + error;
+    record->segmenter_ms[static_cast<std::size_t>(i)] = input.lastSegmenterMs();
+    const auto start = std::chrono::steady_clock::now();
+    ExtractionError extraction;
+    const auto frame = builder.build(i, input.time(static_cast<std::size_t>(i)), gray, evidence, &extraction);
+    if (!frame) return "frame " + std::to_string(i) + ": " + extraction.reason + ": " + extraction.detail;
+    record->intake_ms[static_cast<std::size_t>(i)] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const auto odometry_start = std::chrono::steady_clock::now();
+    const double odometry_cpu_start = processCpuSeconds();
+    for (FramePose& pose : odometry.process(frame)) record->poses.push_back(pose);
+    record->odometry_cpu_s += processCpuSeconds() - odometry_cpu_start;
+    record->odometry_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - odometry_start).count();
+    record->processing_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (*depth_report) stopOnError((*depth_report)->update(odometry.keyframes()), depth_report);
+    progress.update(i + 1);
+  }
+  for (FramePose& pose : odometry.flush()) record->poses.push_back(pose);
+  if (host_known && readHostCpuTimes(&host_after)) record->stolen_share = stolenShare(host_before, host_after);
+  if (*depth_report) (*depth_report)->finish();
+  std::sort(record->poses.begin(), record->poses.end(), [](const FramePose& a, const FramePose& b) { return a.index < b.index; });
+  return "";
+}
+
+/// Frame counts by outcome and the median time per frame.
+struct RunCounts {
+  int trusted = 0, keyframes = 0, lost = 0, untrusted = 0;
+  std::vector<double> totals;  ///< ms per frame: intake + tracking + mapping
+};
+
+/// Writes the poses, timing.txt and parameters.txt into `output`; returns the first write error.
+std::string writeOutputs(const std::string& output, const RunRecord& record, const std::string& parameters, RunCounts* counts) {
+  Trajectory trajectory;
+  std::ostringstream timing;
+  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe guess inlier_ratio motion_deviation keyframe_scale\n";
+  for (const FramePose& pose : record.poses) {
+    trajectory.poses.push_back(pose.T_world_cam);
+    trajectory.stamps.push_back(pose.time);
+    const std::size_t i = static_cast<std::size_t>(pose.index);
+    const double total = record.intake_ms[i] + pose.tracking_ms + pose.mapping_ms;
+    counts->totals.push_back(total);
+    timing << pose.index << ' ' << record.segmenter_ms[i] << ' ' << record.intake_ms[i] << ' ' << pose.tracking_ms << ' ' << pose.mapping_ms
+           << ' ' << total << ' ' << pose.window_ms << ' ' << pose.tracking.iterations << ' ' << pose.trusted << ' ' << toString(pose.state) << ' ' << pose.keyframe
+           << ' ' << pose.tracking.guess << ' ' << pose.tracking.inlierRatio() << ' ' << pose.motion_deviation << ' ' << pose.keyframe_scale << '\n';
+    counts->trusted += pose.trusted;
+    counts->keyframes += pose.keyframe;
+    counts->lost += pose.state == OdometryState::kLost;
+    counts->untrusted += pose.state == OdometryState::kUntrusted;
+  }
+  for (const std::string& written :
+       {writeKittiPoses(output + "/poses_kitti.txt", trajectory), writeTumTrajectory(output + "/poses_tum.txt", trajectory),
+        writeTextFile(output + "/timing.txt", timing.str()), writeTextFile(output + "/parameters.txt", parameters)})
+    if (!written.empty()) return written;
+  return "";
+}
+
+void printSummary(int frames, const RunRecord& record, const RunCounts& counts, bool deferred_window) {
+  // Median of a stage over the frames (or only those where it ran).
+  const auto stage = [&](double FramePose::*ms, bool ran_only) {
+    std::vector<double> values;
+    for (const FramePose& pose : record.poses)
+      if (!ran_only || pose.*ms > 0.0) values.push_back(pose.*ms);
+    return values.empty() ? 0.0 : median(values);
+  };
+  std::printf("run_sequence: %d frames, %d with a trusted pose, %d untrusted, %d lost, "
+              "%d keyframes; median per frame %.1f ms (intake %.1f, tracking %.1f, mapping %.1f); windowed optimisation "
+              "%.1f ms each, %s\n",
+              frames, counts.trusted, counts.untrusted, counts.lost, counts.keyframes, median(counts.totals), median(record.intake_ms),
+              stage(&FramePose::tracking_ms, false), stage(&FramePose::mapping_ms, false), stage(&FramePose::window_ms, true),
+              deferred_window ? "on its own thread (not in the total)" : "in line (in mapping)");
+  std::printf("run_sequence: throughput %.1f frames/s (wall time of intake + odometry over all frames, %.1f s; "
+              "files not counted); odometry alone (tracking + mapping) %.1f frames/s\n",
+              frames / std::max(record.processing_s, 1e-9), record.processing_s, frames / std::max(record.odometry_s, 1e-9));
+  // Wall-time figures move with the host's load (1.5 times within an hour on a shared 2-core VM);
+  // the CPU time moves much less (not at all with time stolen by the hypervisor), and the stolen
+  // share says how contended the host was.
+  std::printf("run_sequence: odometry CPU time %.1f ms a frame (%.2f cores busy on average)", 1e3 * record.odometry_cpu_s / std::max(frames, 1),
+              record.odometry_cpu_s / std::max(record.odometry_s, 1e-9));
+  if (record.stolen_share >= 0.0) std::printf("; the hypervisor took %.0f %% of the host's CPU time during the run", 100.0 * record.stolen_share);
+  std::printf("\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -104,112 +210,27 @@ int main(int argc, char** argv) {
               frames, input.camera().width, input.camera().height, toString(frame_options.intake.mode),
               field_name.c_str(), options.odometry.optimize_window ? "on" : "off", args.config.empty() ? "" : ", config ",
               args.config.c_str());
-
-  const FrameBuilder builder(frame_options, input.camera(), options.classes.names());
-  Odometry odometry(options.odometry, input.camera());
-  std::vector<FramePose> poses;
-  std::vector<double> intake_ms(static_cast<std::size_t>(frames), 0.0), segmenter_ms(static_cast<std::size_t>(frames), 0.0);
   // Synthetic sequences carry their true depths: check every keyframe's point depths against them.
   const std::string depth_folder = args.sequence + "/depth";
   std::optional<KeyframeDepthReport> depth_report;
   if (std::filesystem::is_directory(depth_folder)) depth_report.emplace(depth_folder);
-  ProgressBar progress(frames, !args.quiet);
-  double processing_s = 0.0;  // wall time of intake + odometry, without reading the files
-  double odometry_s = 0.0;    // of the odometry alone (tracking + mapping; live, the intake has its own nodelet)
-  double odometry_cpu_s = 0.0;  // CPU time of all threads during the odometry: what the code costs, whatever the host
-  HostCpuTimes host_before, host_after;
-  const bool host_known = readHostCpuTimes(&host_before);
-  for (int i = 0; i < frames; ++i) {
-    cv::Mat gray;
-    ClassEvidence evidence;
-    error = input.read(static_cast<std::size_t>(i), &gray, &evidence);
-    if (!error.empty()) {
-      std::fprintf(stderr, "\nrun_sequence: frame %d: %s\n", i, error.c_str());
-      return 1;
-    }
-    segmenter_ms[static_cast<std::size_t>(i)] = input.lastSegmenterMs();
-    const auto start = std::chrono::steady_clock::now();
-    ExtractionError extraction;
-    const auto frame = builder.build(i, input.time(static_cast<std::size_t>(i)), gray, evidence, &extraction);
-    if (!frame) {
-      std::fprintf(stderr, "\nrun_sequence: frame %d: %s: %s\n", i, extraction.reason.c_str(), extraction.detail.c_str());
-      return 1;
-    }
-    intake_ms[static_cast<std::size_t>(i)] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    const auto odometry_start = std::chrono::steady_clock::now();
-    const double odometry_cpu_start = processCpuSeconds();
-    for (FramePose& pose : odometry.process(frame)) poses.push_back(pose);
-    odometry_cpu_s += processCpuSeconds() - odometry_cpu_start;
-    odometry_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - odometry_start).count();
-    processing_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (depth_report) stopOnError(depth_report->update(odometry.keyframes()), &depth_report);
-    progress.update(i + 1);
+  RunRecord record;
+  RunCounts counts;
+  error = runFrames(options, input, frames, args.quiet, &depth_report, &record);
+  if (!error.empty()) {
+    std::fprintf(stderr, "\nrun_sequence: %s\n", error.c_str());
+    return 1;
   }
-  for (FramePose& pose : odometry.flush()) poses.push_back(pose);
-  const bool host_measured = host_known && readHostCpuTimes(&host_after);
-  if (depth_report) depth_report->finish();
-  std::sort(poses.begin(), poses.end(), [](const FramePose& a, const FramePose& b) { return a.index < b.index; });
-
-  Trajectory trajectory;
-  std::ostringstream timing;
-  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe guess inlier_ratio motion_deviation keyframe_scale\n";
-  int trusted = 0, keyframes = 0, lost = 0, untrusted = 0;
-  std::vector<double> totals;
-  for (const FramePose& pose : poses) {
-    trajectory.poses.push_back(pose.T_world_cam);
-    trajectory.stamps.push_back(pose.time);
-    const std::size_t i = static_cast<std::size_t>(pose.index);
-    const double total = intake_ms[i] + pose.tracking_ms + pose.mapping_ms;
-    totals.push_back(total);
-    timing << pose.index << ' ' << segmenter_ms[i] << ' ' << intake_ms[i] << ' ' << pose.tracking_ms << ' ' << pose.mapping_ms
-           << ' ' << total << ' ' << pose.window_ms << ' ' << pose.tracking.iterations << ' ' << pose.trusted << ' ' << toString(pose.state) << ' ' << pose.keyframe
-           << ' ' << pose.tracking.guess << ' ' << pose.tracking.inlierRatio() << ' ' << pose.motion_deviation << ' ' << pose.keyframe_scale << '\n';
-    trusted += pose.trusted;
-    keyframes += pose.keyframe;
-    lost += pose.state == OdometryState::kLost;
-    untrusted += pose.state == OdometryState::kUntrusted;
+  const std::string parameters =
+      "# " + (args.config.empty() ? "built-in defaults" : args.config) + ", then the command line:" + options.summary + "\n";
+  error = writeOutputs(args.output, record, parameters, &counts);
+  if (error.empty() && depth_report) error = writeTextFile(args.output + "/keyframe_depths.txt", depth_report->table());
+  if (!error.empty()) {
+    std::fprintf(stderr, "run_sequence: %s\n", error.c_str());
+    return 1;
   }
-  for (const std::string& written :
-       {writeKittiPoses(args.output + "/poses_kitti.txt", trajectory), writeTumTrajectory(args.output + "/poses_tum.txt", trajectory),
-        writeTextFile(args.output + "/timing.txt", timing.str()),
-        writeTextFile(args.output + "/parameters.txt", "# " + (args.config.empty() ? "built-in defaults" : args.config) +
-                                                           ", then the command line:" + options.summary + "\n")})
-    if (!written.empty()) {
-      std::fprintf(stderr, "run_sequence: %s\n", written.c_str());
-      return 1;
-    }
-  // Median of a stage over the frames (or only those where it ran).
-  const auto stage = [&](double FramePose::*ms, bool ran_only) {
-    std::vector<double> values;
-    for (const FramePose& pose : poses)
-      if (!ran_only || pose.*ms > 0.0) values.push_back(pose.*ms);
-    return values.empty() ? 0.0 : median(values);
-  };
-  std::printf("run_sequence: %d frames, %d with a trusted pose, %d untrusted, %d lost, "
-              "%d keyframes; median per frame %.1f ms (intake %.1f, tracking %.1f, mapping %.1f); windowed optimisation "
-              "%.1f ms each, %s\n",
-              frames, trusted, untrusted, lost, keyframes, median(totals), median(intake_ms), stage(&FramePose::tracking_ms, false),
-              stage(&FramePose::mapping_ms, false), stage(&FramePose::window_ms, true),
-              options.odometry.window_delay > 0 ? "on its own thread (not in the total)" : "in line (in mapping)");
-  std::printf("run_sequence: throughput %.1f frames/s (wall time of intake + odometry over all frames, %.1f s; "
-              "files not counted); odometry alone (tracking + mapping) %.1f frames/s\n",
-              frames / std::max(processing_s, 1e-9), processing_s, frames / std::max(odometry_s, 1e-9));
-  // Wall-time figures move with the host's load (1.5 times within an hour on a shared 2-core VM);
-  // the CPU time moves much less (not at all with time stolen by the hypervisor), and the stolen
-  // share says how contended the host was.
-  std::printf("run_sequence: odometry CPU time %.1f ms a frame (%.2f cores busy on average)", 1e3 * odometry_cpu_s / std::max(frames, 1),
-              odometry_cpu_s / std::max(odometry_s, 1e-9));
-  if (host_measured)
-    std::printf("; the hypervisor took %.0f %% of the host's CPU time during the run", 100.0 * stolenShare(host_before, host_after));
-  std::printf("\n");
-  if (depth_report) {
-    error = writeTextFile(args.output + "/keyframe_depths.txt", depth_report->table());
-    if (!error.empty()) {
-      std::fprintf(stderr, "run_sequence: %s\n", error.c_str());
-      return 1;
-    }
-    std::printf("run_sequence: keyframe depths against the sequence's true depths: %s\n", depth_report->summary().c_str());
-  }
+  printSummary(frames, record, counts, options.odometry.window_delay > 0);
+  if (depth_report) std::printf("run_sequence: keyframe depths against the sequence's true depths: %s\n", depth_report->summary().c_str());
   std::printf("run_sequence: wrote %s/poses_kitti.txt, poses_tum.txt, timing.txt, parameters.txt%s\n", args.output.c_str(),
               depth_report ? ", keyframe_depths.txt" : "");
   return 0;
