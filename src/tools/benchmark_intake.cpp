@@ -111,6 +111,60 @@ cv::Mat bitmaskWithStrength(const cv::Mat& edge_probabilities, float threshold) 
   return bitmask;
 }
 
+/// The segmenter's class probabilities of the frame, timed (median of `runs` after a warm-up); a
+/// synthetic stand-in without the model. Returns the segmenter's error.
+std::string classProbabilities(const std::string& model_path, const cv::Mat& gray, int classes, int runs, cv::Mat* probabilities) {
+  if (!std::filesystem::exists(model_path)) {
+    std::printf("(no segmenter model at %s: synthetic class probabilities)\n", model_path.c_str());
+    *probabilities = syntheticProbabilities(classes);
+    return "";
+  }
+  SegmenterOptions options;
+  options.model_path = model_path;
+  Segmenter segmenter(options, classes);
+  if (!segmenter.ok()) return segmenter.error();
+  segmenter.segment(gray, CV_32F, probabilities);  // warm-up
+  const double ms = medianMs(runs, [&] { segmenter.segment(gray, CV_32F, probabilities); });
+  std::printf("segmenter %s, input %dx%d, %d OpenCV threads: median %.1f ms per frame (%d runs)\n",
+              model_path.c_str(), options.input_width, options.input_height, cv::getNumThreads(), ms, runs);
+  return "";
+}
+
+/// One intake mode with one form of class input.
+struct IntakeRow {
+  IntakeMode mode;
+  const char* input;
+  ClassEvidence evidence;
+};
+
+/// Times the row's edge extraction and point sample over `runs` (median thread CPU time, so that
+/// other processes on the machine do not inflate the figures) and prints its line.
+std::string timeIntake(const IntakeRow& row, const cv::Mat& gray, int runs) {
+  const PointSampler sampler{PointSamplerOptions()};
+  SemanticEdgeOptions options;
+  options.mode = row.mode;
+  const SemanticEdgeExtractor extractor(options);
+  EdgeSet edges;
+  PointSample sample;
+  std::string error;
+  std::vector<double> extract_ms, sample_ms;
+  for (int i = 0; i < runs; ++i) {
+    const double start = threadCpuMs();
+    if (ExtractionError e = extractor.extract(gray, row.evidence, cv::Mat(), &edges)) error = e.reason + ": " + e.detail;
+    const double extracted = threadCpuMs();
+    sample = sampler.sample(gray, edges.view());
+    extract_ms.push_back(extracted - start);
+    sample_ms.push_back(threadCpuMs() - extracted);
+  }
+  if (!error.empty()) return error;
+  std::size_t multi = 0;
+  for (std::uint32_t mask : edges.class_mask) multi += __builtin_popcount(mask) > 1;
+  std::printf("  %-15s %-27s %6.2f ms = edges+classes %5.2f + sample %5.2f  (%zu edges, %zu with 2+ classes, %zu + %zu sampled)\n",
+              toString(row.mode), row.input, median(extract_ms) + median(sample_ms), median(extract_ms), median(sample_ms),
+              edges.size(), multi, sample.edge_indices.size(), sample.support_u.size());
+  return "";
+}
+
 }  // namespace
 
 const char* const kUsage =
@@ -149,21 +203,10 @@ int main(int argc, char** argv) {
   const int classes = table.size();
 
   cv::Mat probabilities;
-  if (std::filesystem::exists(model_path)) {
-    SegmenterOptions options;
-    options.model_path = model_path;
-    Segmenter segmenter(options, classes);
-    if (!segmenter.ok()) {
-      std::fprintf(stderr, "benchmark_intake: %s\n", segmenter.error().c_str());
-      return 1;
-    }
-    segmenter.segment(gray, CV_32F, &probabilities);  // warm-up
-    const double ms = medianMs(segmenter_runs, [&] { segmenter.segment(gray, CV_32F, &probabilities); });
-    std::printf("segmenter %s, input %dx%d, %d OpenCV threads: median %.1f ms per frame (%d runs)\n",
-                model_path.c_str(), options.input_width, options.input_height, cv::getNumThreads(), ms, segmenter_runs);
-  } else {
-    std::printf("(no segmenter model at %s: synthetic class probabilities)\n", model_path.c_str());
-    probabilities = syntheticProbabilities(classes);
+  error = classProbabilities(model_path, gray, classes, segmenter_runs, &probabilities);
+  if (!error.empty()) {
+    std::fprintf(stderr, "benchmark_intake: %s\n", error.c_str());
+    return 1;
   }
   cv::Mat probabilities8, edge_probabilities8;
   probabilities.convertTo(probabilities8, CV_8U, 255.0);
@@ -175,12 +218,7 @@ int main(int argc, char** argv) {
   cv::setNumThreads(1);
   std::printf("intake of a %dx%d frame, %d classes, one core, median thread CPU time of %d runs:\n",
               kWidth, kHeight, classes, runs);
-  struct Row {
-    IntakeMode mode;
-    const char* input;
-    ClassEvidence evidence;
-  };
-  const std::vector<Row> rows = {
+  const std::vector<IntakeRow> rows = {
       {IntakeMode::kCanny, "-", {}},
       {IntakeMode::kFused, "32FC19 probabilities", {ClassEvidenceForm::kProbabilities, probabilities, classes}},
       {IntakeMode::kFused, "8UC19 probabilities", {ClassEvidenceForm::kProbabilities, probabilities8, classes}},
@@ -189,33 +227,12 @@ int main(int argc, char** argv) {
       {IntakeMode::kSemanticEdges, "8UC19 edge probabilities", {ClassEvidenceForm::kProbabilities, edge_probabilities8, classes}},
       {IntakeMode::kSemanticEdges, "8UC4 bitmask+strength", {ClassEvidenceForm::kBitmask, bitmask, classes}},
   };
-  const PointSampler sampler{PointSamplerOptions()};
-  for (const Row& row : rows) {
-    SemanticEdgeOptions options;
-    options.mode = row.mode;
-    const SemanticEdgeExtractor extractor(options);
-    EdgeSet edges;
-    PointSample sample;
-    std::string error;
-    // CPU time of this thread, so that other processes on the machine do not inflate the figures.
-    std::vector<double> extract_ms, sample_ms;
-    for (int i = 0; i < runs; ++i) {
-      const double start = threadCpuMs();
-      if (ExtractionError e = extractor.extract(gray, row.evidence, cv::Mat(), &edges)) error = e.reason + ": " + e.detail;
-      const double extracted = threadCpuMs();
-      sample = sampler.sample(gray, edges.view());
-      extract_ms.push_back(extracted - start);
-      sample_ms.push_back(threadCpuMs() - extracted);
-    }
+  for (const IntakeRow& row : rows) {
+    error = timeIntake(row, gray, runs);
     if (!error.empty()) {
       std::fprintf(stderr, "benchmark_intake: %s (%s): %s\n", toString(row.mode), row.input, error.c_str());
       return 1;
     }
-    std::size_t multi = 0;
-    for (std::uint32_t mask : edges.class_mask) multi += __builtin_popcount(mask) > 1;
-    std::printf("  %-15s %-27s %6.2f ms = edges+classes %5.2f + sample %5.2f  (%zu edges, %zu with 2+ classes, %zu + %zu sampled)\n",
-                toString(row.mode), row.input, median(extract_ms) + median(sample_ms), median(extract_ms), median(sample_ms),
-                edges.size(), multi, sample.edge_indices.size(), sample.support_u.size());
   }
   return 0;
 }
