@@ -11,6 +11,7 @@
 #include "semantic_edge_vo/frontend/frame_consistency.h"
 #include "semantic_edge_vo/frontend/motion_model.h"
 #include "semantic_edge_vo/backend/keyframe.h"
+#include "semantic_edge_vo/backend/keyframe_depths.h"
 #include "semantic_edge_vo/backend/keyframe_motion.h"
 #include "semantic_edge_vo/frontend/tracker.h"
 #include "semantic_edge_vo/backend/two_view_initializer.h"
@@ -134,15 +135,11 @@ class Odometry {
   /// epipolar search. False when the scale disagrees: nothing changed, the frame is not to be trusted.
   bool makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, std::shared_ptr<const SharedClassEdgeTest> frame_edges,
                     FramePose* pose);
-  /// The keyframe's points from its frame's candidates: prior depths from the previous keyframe's
-  /// measured points, then an epipolar search against the previous keyframe.
-  /// @return the scale of the new depths against the map's: the median of the map's inverse depths
-  ///         over the measured ones, where both are known (1 when too few are)
+  /// The keyframe's points from its frame's candidates, their depths triangulated against the
+  /// previous keyframe (KeyframeDepths::triangulate, whose scale it returns).
   double triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const;
   /// The frame's pose when no solution could be trusted: the prediction; lost after too many in a row.
   FramePose untrustedPose(const OdometryFrame& frame, FramePose pose);
-  /// Epipolar search of each point of the host in the target, fused into its depth filter.
-  void measureDepths(const PyramidLevel& host, const EpipolarTarget& target, std::vector<MapPoint>* points) const;
   /// Optimises the window at a new keyframe: in line, or started on its own thread.
   void optimizeWindow(int frame_index, FramePose* pose);
   /// Merges the deferred optimisation; the recent poses move with the active keyframe, whose points
@@ -164,6 +161,7 @@ class Odometry {
   OdometryOptions options_;
   PinholeCamera camera_;
   Tracker tracker_;
+  KeyframeDepths depths_;  ///< of the keyframes' points
   WindowOptimizer window_optimizer_;
   DeferredWindowOptimization deferred_window_;
   int merge_window_at_ = 0;  ///< frame index at which the deferred optimisation is merged

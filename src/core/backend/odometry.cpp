@@ -52,6 +52,7 @@ Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera)
     : options_(options),
       camera_(camera),
       tracker_(options.tracker),
+      depths_(options.epipolar, camera, options.depth_neighbour_radius, 1.0 / options.initializer.median_depth),
       window_optimizer_(options.window_optimizer),
       deferred_window_(window_optimizer_),
       initializer_(options.initializer, camera),

@@ -7,10 +7,8 @@
 
 namespace semantic_edge_vo {
 
-using odometry_detail::DepthSample;
 using odometry_detail::elapsedMs;
 using odometry_detail::gray8;
-using odometry_detail::propagateDepths;
 
 void Odometry::startInitialization(const std::shared_ptr<const OdometryFrame>& frame) {
   const auto start = std::chrono::steady_clock::now();
@@ -84,7 +82,7 @@ std::shared_ptr<const Keyframe> Odometry::makeFirstKeyframe(Eigen::Isometry3d* T
   std::vector<DepthSample> samples;
   for (const MapPoint& point : keyframe->points)
     if (point.hasDepth()) samples.push_back({Eigen::Vector2d(point.u, point.v), point.inverse_depth});
-  propagateDepths(samples, camera_, options_.depth_neighbour_radius, 1.0 / options_.initializer.median_depth, &keyframe->points);
+  depths_.propagate(samples, &keyframe->points);
   keyframes_.push_back(keyframe);
   setActiveKeyframe(keyframe);
 

@@ -1,0 +1,87 @@
+#include "semantic_edge_vo/backend/keyframe_depths.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "semantic_edge_vo/common/parallel_slices.h"
+#include "semantic_edge_vo/common/robust_statistics.h"
+
+namespace semantic_edge_vo {
+namespace {
+
+std::shared_ptr<const SharedClassEdgeTest> edgeTestOf(const OdometryFrame& frame, double radius) {
+  return frame.has_field ? std::make_shared<const SharedClassEdgeTest>(frame.field, radius) : nullptr;
+}
+
+}  // namespace
+
+void KeyframeDepths::propagate(const std::vector<DepthSample>& samples, std::vector<MapPoint>* points) const {
+  const double radius = neighbour_radius_;
+  const int cols = static_cast<int>(std::ceil(camera_.width / radius)), rows = static_cast<int>(std::ceil(camera_.height / radius));
+  std::vector<std::vector<const DepthSample*>> buckets(static_cast<std::size_t>(cols * rows));
+  std::vector<double> all;
+  for (const DepthSample& sample : samples) {
+    const int bx = std::clamp(static_cast<int>(sample.pixel.x() / radius), 0, cols - 1);
+    const int by = std::clamp(static_cast<int>(sample.pixel.y() / radius), 0, rows - 1);
+    buckets[static_cast<std::size_t>(by * cols + bx)].push_back(&sample);
+    all.push_back(sample.inverse_depth);
+  }
+  const double fallback = all.empty() ? default_inverse_depth_ : median(all);
+  std::vector<double> near;
+  for (MapPoint& point : *points) {
+    if (point.hasDepth()) continue;
+    near.clear();
+    const int bx = static_cast<int>(point.u / radius), by = static_cast<int>(point.v / radius);
+    for (int y = std::max(0, by - 1); y <= std::min(rows - 1, by + 1); ++y)
+      for (int x = std::max(0, bx - 1); x <= std::min(cols - 1, bx + 1); ++x)
+        for (const DepthSample* sample : buckets[static_cast<std::size_t>(y * cols + x)])
+          if ((sample->pixel - Eigen::Vector2d(point.u, point.v)).norm() <= radius) near.push_back(sample->inverse_depth);
+    point.inverse_depth = near.empty() ? fallback : median(near);
+    point.inverse_depth_variance = std::pow((near.empty() ? 1.0 : 0.5) * point.inverse_depth, 2);
+    point.observations = 0;
+  }
+}
+
+double KeyframeDepths::triangulate(Keyframe* keyframe, const Keyframe& previous) const {
+  // Prior depths: the previous keyframe's measured points, seen from the new keyframe.
+  const Eigen::Isometry3d T_new_old = keyframe->T_world_cam.inverse() * previous.T_world_cam;
+  std::vector<DepthSample> samples;
+  for (const MapPoint& point : previous.points) {
+    if (!point.hasDepth()) continue;
+    const Eigen::Vector3d p = T_new_old * camera_.backProject(point.u, point.v, 1.0 / point.inverse_depth);
+    const Eigen::Vector2d pixel = camera_.project(p);
+    if (p.z() > 1e-3 && camera_.contains(pixel.x(), pixel.y())) samples.push_back({pixel, 1.0 / p.z()});
+  }
+  propagate(samples, &keyframe->points);
+  std::vector<double> priors(keyframe->points.size(), 0.0);  // of the points with map points near
+  for (std::size_t i = 0; i < priors.size(); ++i)
+    if (keyframe->points[i].inverse_depth_variance < std::pow(0.75 * keyframe->points[i].inverse_depth, 2)) priors[i] = keyframe->points[i].inverse_depth;
+  const PyramidLevel& host = keyframe->frame->pyramid->level(0);
+  const std::shared_ptr<const SharedClassEdgeTest> previous_edges =
+      previous.edge_test ? previous.edge_test : edgeTestOf(*previous.frame, epipolar_.edge_radius);
+  measure(host, {&previous.frame->pyramid->level(0), previous_edges.get(), T_new_old.inverse()}, &keyframe->points);
+  std::vector<double> ratios;  // inverse depths measured over the map's
+  for (std::size_t i = 0; i < priors.size(); ++i)
+    if (priors[i] > 0.0 && keyframe->points[i].observations > 0) ratios.push_back(keyframe->points[i].inverse_depth / priors[i]);
+  constexpr std::size_t kMinRatios = 20;  // fewer: no say on the scale
+  return ratios.size() < kMinRatios ? 1.0 : 1.0 / median(ratios);
+}
+
+std::shared_ptr<const SharedClassEdgeTest> KeyframeDepths::refine(Keyframe* keyframe, const OdometryFrame& frame,
+                                                                   const Eigen::Isometry3d& T_frame_kf) const {
+  std::shared_ptr<const SharedClassEdgeTest> edges = edgeTestOf(frame, epipolar_.edge_radius);
+  measure(keyframe->frame->pyramid->level(0), {&frame.pyramid->level(0), edges.get(), T_frame_kf}, &keyframe->points);
+  return edges;
+}
+
+void KeyframeDepths::measure(const PyramidLevel& host, const EpipolarTarget& target, std::vector<MapPoint>* points) const {
+  // Each point is searched and filtered on its own: both cores, same result as in order.
+  forEachIndex(points->size(), [&](std::size_t i) {
+    DepthMeasurement measurement;
+    MapPoint& point = (*points)[i];
+    if (searchEpipolar(point, host, *target.level, target.edges, target.T_target_host, epipolar_, &measurement))
+      fuseDepth(measurement, &point);
+  });
+}
+
+}  // namespace semantic_edge_vo
