@@ -146,7 +146,7 @@ FrameAgreement Odometry::agreementOf(const OdometryFrame& frame, const TrackingR
   const Eigen::Vector3d travel = (T_last_world * active_->T_world_cam * result.T_cam_kf.inverse()).translation();
   const Eigen::Vector3d predicted = (T_last_world * motion_.predict(stampOf(frame))).translation();
   const double usual_travel = motion_.drivingMotion().head<3>().norm() * motion_.framesBetween(motion_.lastStamp(), stampOf(frame));
-  const double usual_ratio = recent_inlier_ratios_.empty() ? 0.0 : median({recent_inlier_ratios_.begin(), recent_inlier_ratios_.end()});
+  const double usual_ratio = median({recent_inlier_ratios_.begin(), recent_inlier_ratios_.end()});
   return compareWithRecentFrames(result.inlierRatio(), usual_ratio, options_.tracker.accept_inlier_ratio, travel, predicted,
                                  usual_travel, options_.consistency);
 }

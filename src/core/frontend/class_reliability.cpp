@@ -1,6 +1,6 @@
 #include "semantic_edge_vo/frontend/class_reliability.h"
 
-#include <sstream>
+#include <string>
 
 namespace semantic_edge_vo {
 namespace {
