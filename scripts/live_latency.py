@@ -3,6 +3,8 @@
 pairs every /odometry message with the /camera/camera_info message of the same stamp (played together
 with its image) and reports, per frame, how long after its image the pose arrived. A graph that keeps
 up holds its latency; one that falls behind adds to it frame after frame, until its queues overflow.
+From /tracking_status it adds the frames trusted and the class maps' age (a live segmenter's maps
+carried to the frames after theirs), from /segmentation_time the frames segmented and their time.
 
   live_latency.py RECORDED_BAG --rate R [--steal S] [--label L] [--camera-info TOPIC] [--odometry TOPIC]
                   [--json FILE] [--frames-file FILE]
@@ -35,13 +37,21 @@ def slope(values):
 def analyse(path, rate, camera_info_topic, odometry_topic, skip):
     played = {}  # stamp -> receipt time of the frame's camera_info
     poses = []  # (stamp, receipt time) of each odometry message
+    statuses = []  # (state, class map age s) of each tracking status
+    segmentation_ms = []
     with rosbag.Bag(path) as bag:
-        for topic, message, received in bag.read_messages(topics=[camera_info_topic, odometry_topic]):
+        for topic, message, received in bag.read_messages(
+                topics=[camera_info_topic, odometry_topic, "/tracking_status", "/segmentation_time"]):
+            if topic == "/segmentation_time":
+                segmentation_ms.append(message.data)
+                continue
             stamp = message.header.stamp.to_nsec()
             if topic == camera_info_topic:
                 played.setdefault(stamp, received.to_sec())
-            else:
+            elif topic == odometry_topic:
                 poses.append((stamp, received.to_sec()))
+            else:
+                statuses.append((message.state, getattr(message, "class_map_age", -1.0)))
     if not played:
         raise ValueError("%s holds no %s message: was the bag playing?" % (path, camera_info_topic))
     frame_of = {stamp: i for i, stamp in enumerate(sorted(played))}
@@ -55,6 +65,7 @@ def analyse(path, rate, camera_info_topic, odometry_topic, skip):
         raise ValueError("%s: fewer than two frames played, no frame period" % path)
     period_ms = 1e-6 * (stamps[-1] - stamps[0]) / (len(stamps) - 1) / rate  # wall time between played frames
     trend = slope(steady)
+    ages = [age for _, age in statuses if age >= 0]
     behind = trend >= 0.05 * period_ms  # the latency grows by 5 % of a frame period a frame, or more
     return {
         "rate": rate,
@@ -71,6 +82,13 @@ def analyse(path, rate, camera_info_topic, odometry_topic, skip):
         # Falling behind by `trend` ms a frame, the graph takes period + trend a frame (null: it did not).
         "sustained_hz": 1e3 / (period_ms + trend) if behind else None,
         "latency_ms": [latency.get(i) for i in range(len(played))],
+        "statuses": len(statuses),
+        "untrusted_or_lost": sum(state in (2, 4) for state, _ in statuses),  # TrackingStatus LOST, UNTRUSTED
+        "class_map_age_median_s": statistics.median(ages) if ages else None,
+        "class_map_age_max_s": max(ages) if ages else None,
+        "frames_without_class_map": sum(age < 0 for _, age in statuses),
+        "frames_segmented": len(segmentation_ms),
+        "segmentation_median_ms": statistics.median(segmentation_ms) if segmentation_ms else None,
     }
 
 
@@ -90,12 +108,16 @@ def table(paths):
     """Markdown table of the runs in `paths` (latency.json files), then each rate's verdict over its runs."""
     runs = [json.load(open(path)) for path in paths]
     fmt = lambda v: "-" if v is None else "%.0f" % v
-    lines = ["| rate | played Hz | frames with a pose | median latency ms | max ms | trend ms/frame | verdict | hypervisor took |",
-             "|---:|---:|---:|---:|---:|---:|---|---:|"]
+    age = lambda v: "-" if v is None else "%.2f" % v
+    lines = ["| rate | played Hz | frames with a pose | median latency ms | max ms | trend ms/frame | verdict | "
+             "class map age s, median / max | frames segmented, median ms | manager CPU, cores | hypervisor took |",
+             "|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|"]
     for r in runs:
-        lines.append("| %.2gx | %.1f | %d/%d | %s | %s | %+.1f | %s | %s %% |" % (
+        lines.append("| %.2gx | %.1f | %d/%d | %s | %s | %+.1f | %s | %s / %s | %d, %s | %s | %s %% |" % (
             r["rate"], r["played_hz"], r["poses"], r["frames_played"], fmt(r["latency_median_ms"]),
-            fmt(r["latency_max_ms"]), r["latency_trend_ms_per_frame"], verdict(r), fmt(r["steal_percent"])))
+            fmt(r["latency_max_ms"]), r["latency_trend_ms_per_frame"], verdict(r), age(r.get("class_map_age_median_s")),
+            age(r.get("class_map_age_max_s")), r.get("frames_segmented", 0), fmt(r.get("segmentation_median_ms")),
+            age(r.get("manager_cores")), fmt(r["steal_percent"])))
     lines.append("")
     for rate in sorted({r["rate"] for r in runs}):
         same = [r for r in runs if r["rate"] == rate]
@@ -116,6 +138,7 @@ def main():
     parser.add_argument("bag")
     parser.add_argument("--rate", type=float, required=True, help="rosbag play rate the bag was played at")
     parser.add_argument("--steal", type=float, default=None, help="share of CPU time the hypervisor took, percent")
+    parser.add_argument("--manager-cores", type=float, default=None, help="CPU time of the nodelet manager over the wall time")
     parser.add_argument("--label", default="", help="name of the run in the summary line")
     parser.add_argument("--camera-info", default="/camera/camera_info")
     parser.add_argument("--odometry", default="/odometry")
@@ -130,6 +153,7 @@ def main():
         return 1
     result["label"] = args.label
     result["steal_percent"] = args.steal
+    result["manager_cores"] = args.manager_cores
     median = result["latency_median_ms"]
     trend = result["latency_trend_ms_per_frame"]
     print("%s %.2fx (%.1f Hz): %d/%d frames with a pose; latency after frame %d: median %s ms, max %s ms, "
@@ -138,6 +162,13 @@ def main():
               "%.0f" % median if median is not None else "-",
               "%.0f" % result["latency_max_ms"] if result["latency_max_ms"] is not None else "-",
               trend, verdict(result), "" if args.steal is None else "; hypervisor took %.0f %% of the CPU time" % args.steal))
+    if result["frames_segmented"] or result["class_map_age_median_s"] is not None:
+        print("%s: %d frames segmented (median %s ms); class map age median %s s, max %s s; %d frames without a class map; "
+              "%d untrusted or lost" % (
+                  args.label, result["frames_segmented"], "%.0f" % result["segmentation_median_ms"] if result["segmentation_median_ms"] else "-",
+                  "%.2f" % result["class_map_age_median_s"] if result["class_map_age_median_s"] is not None else "-",
+                  "%.2f" % result["class_map_age_max_s"] if result["class_map_age_max_s"] is not None else "-",
+                  result["frames_without_class_map"], result["untrusted_or_lost"]))
     if args.json:
         with open(args.json, "w") as out:
             json.dump(result, out, indent=1)

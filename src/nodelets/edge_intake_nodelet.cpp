@@ -17,6 +17,7 @@
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
 #include "semantic_edge_vo/common/class_table.h"
 #include "semantic_edge_vo/frontend/point_sampler.h"
+#include "semantic_edge_vo/edges/class_map_carrier.h"
 #include "semantic_edge_vo/edges/semantic_edge_extractor.h"
 #include "semantic_edge_vo/ros/class_input.h"
 #include "semantic_edge_vo/ros/conversions.h"
@@ -61,6 +62,8 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     rectify_ = stream.rectify;
     time_jump_back_ = stream.time_jump_back;
     fallback_to_canny_ = stream.on_missing_classes == "canny";
+    carry_classes_ = options_.mode != IntakeMode::kCanny && stream.class_maps == "newest";
+    carrier_ = ClassMapCarrier(stream.class_carry);
     stamp_order_ = StampOrder(time_jump_back_);
     const bool need_edges = options_.mode == IntakeMode::kFused && stream.edge_source == "topic";
     pairing_ = std::make_unique<FramePairing>(need_edges, stream.class_wait, static_cast<std::size_t>(stream.max_pending));
@@ -159,14 +162,15 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
         // Frames still waiting for their class maps belong to the old pass: after the new one's they
         // would go out of stamp order.
         const std::size_t dropped = pairing_->clear();
+        carrier_.clear();
         NODELET_WARN_STREAM("the input's stamps jumped back by " << (previous - image->header.stamp).toSec() << " s (from "
                             << previous << " to " << image->header.stamp << "; a bag played again?): the graph starts over"
                             << (dropped ? " (" + std::to_string(dropped) + " frames waiting for class maps dropped)" : ""));
         break;
       }
     }
-    if (options_.mode == IntakeMode::kCanny) {
-      process(FramePairing::Frame{image, info, nullptr, nullptr, true});
+    if (options_.mode == IntakeMode::kCanny || carry_classes_) {
+      process(FramePairing::Frame{image, info, nullptr, nullptr, options_.mode == IntakeMode::kCanny});
       return;
     }
     handle(pairing_->addImage(image, info, ros::WallTime::now()));
@@ -174,7 +178,30 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
 
   void onClasses(const sensor_msgs::ImageConstPtr& classes) {
     std::lock_guard<std::mutex> lock(mutex_);
-    handle(pairing_->addClasses(classes, ros::WallTime::now()));
+    if (carry_classes_) takeClassMap(*classes);
+    else handle(pairing_->addClasses(classes, ros::WallTime::now()));
+  }
+
+  /// class_maps newest: the map goes to the carrier, which takes it to the frames after its image.
+  void takeClassMap(const sensor_msgs::Image& classes) {
+    std::string detail;
+    ClassEvidence evidence;
+    if (const std::string reason = classEvidenceFromImage(classes, class_form_, classes_.size(), &evidence, &detail); !reason.empty()) {
+      rejections_->reject("class map", reason, detail);
+      return;
+    }
+    if (rectify_) {
+      if (!rectifier_.ready()) {
+        rejections_->reject("class map", "no_calibration", "a class map came before any image: it cannot be rectified yet");
+        return;
+      }
+      cv::Mat rectified;
+      rectifier_.rectify(evidence.values, &rectified, evidence.form != ClassEvidenceForm::kProbabilities);
+      evidence.values = rectified;
+    }
+    if (!carrier_.setClassMap(classes.header.stamp.toSec(), evidence))
+      NODELET_WARN_STREAM_THROTTLE(5.0, "the class map of " << classes.header.stamp << " is not of a recent image, or older than "
+                                        "the newest map (class_carry/remembered_images): not used");
   }
   void onEdges(const sensor_msgs::ImageConstPtr& edges) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -233,9 +260,18 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     else gray_input->image.copyTo(gray);
 
     EdgeSet edges;
-    ClassEvidence evidence;  // views the class map message
+    ClassEvidence evidence;  // views the class map message, or the carried map
     const SemanticEdgeExtractor extractor(options_);
-    if (input.complete) {
+    frame->class_map_age = input.complete && options_.mode != IntakeMode::kCanny ? 0.0f : -1.0f;
+    if (carry_classes_ && carriedClasses(image.header.stamp, gray, &evidence, &frame->class_map_age)) {
+      if (ExtractionError error = extractor.extract(gray, evidence, cv::Mat(), &edges)) {
+        rejections_->reject("class map", error.reason, error.detail);
+        return;
+      }
+      frame->intake_mode = toString(options_.mode);
+    } else if (carry_classes_ && !fallback_to_canny_) {
+      return;
+    } else if (input.complete) {
       if (!extractEdges(input, gray, extractor, &edges, &evidence)) return;
       frame->intake_mode = toString(options_.mode);
     } else {
@@ -251,6 +287,20 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     if (edge_image_publisher_.getNumSubscribers() > 0) publishEdgeImage(*frame, gray);
     frame_publisher_.publish(SemanticEdgeFrameConstPtr(frame));
     tracer_.published(frame_publisher_, frame.get(), frame->header.stamp);
+  }
+
+  /// class_maps newest: the newest class map carried to the image, and its age; false when none is
+  /// recent enough (warned: the frame is made with Canny edges of every class, or dropped).
+  bool carriedClasses(const ros::Time& stamp, const cv::Mat& gray, ClassEvidence* evidence, float* age) {
+    carrier_.addImage(stamp.toSec(), gray);
+    double seconds = 0.0;
+    if (carrier_.carryTo(stamp.toSec(), evidence, &seconds)) {
+      *age = static_cast<float>(seconds);
+      return true;
+    }
+    NODELET_WARN_STREAM_THROTTLE(5.0, "no class map within class_carry/max_age of the image of " << stamp << ": "
+                                      << (fallback_to_canny_ ? "made with Canny, every class" : "dropped"));
+    return false;
   }
 
   /// The edges with classes from the frame's maps (viewed in place); false when a map is refused.
@@ -307,6 +357,8 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
   ClassTable classes_;
   ClassEvidenceForm class_form_ = ClassEvidenceForm::kProbabilities;
   bool fallback_to_canny_ = true;
+  bool carry_classes_ = false;  ///< class_maps newest (fused, semantic_edges)
+  ClassMapCarrier carrier_;      ///< class_maps newest
   std::unique_ptr<InputRejections> rejections_;
   MessageTracer tracer_;
   ros::Publisher frame_publisher_;

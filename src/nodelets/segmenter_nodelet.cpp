@@ -46,6 +46,8 @@ class SegmenterNodelet : public nodelet::Nodelet {
       NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
       return;
     }
+    if (!segmenter_->notice().empty()) NODELET_WARN_STREAM(segmenter_->notice());
+    NODELET_INFO_STREAM("the network runs on: " << segmenter_->device());
     classes_ = classes.size();
     probability_publisher_ = node.advertise<sensor_msgs::Image>("class_probabilities", 2);
     time_publisher_ = node.advertise<std_msgs::Float32>("segmentation_time", 10);
@@ -73,14 +75,16 @@ class SegmenterNodelet : public nodelet::Nodelet {
     out->header = image->header;
     out->width = image->width;
     out->height = image->height;
-    const int depth = output_.output_bits == 32 ? CV_32F : CV_8U;
-    out->encoding = (output_.output_bits == 32 ? "32FC" : "8UC") + std::to_string(classes_);
-    out->step = image->width * static_cast<std::uint32_t>(classes_ * output_.output_bits / 8);
+    const bool labels = output_.output_format == "labels";
+    const int depth = !labels && output_.output_bits == 32 ? CV_32F : CV_8U;
+    const int channels = labels ? 2 : classes_;
+    out->encoding = (depth == CV_32F ? "32FC" : "8UC") + std::to_string(channels);
+    out->step = image->width * static_cast<std::uint32_t>(channels * (depth == CV_32F ? 4 : 1));
     out->data.resize(static_cast<std::size_t>(out->step) * out->height);
-    cv::Mat probabilities(static_cast<int>(out->height), static_cast<int>(out->width), CV_MAKETYPE(depth, classes_), out->data.data());
+    cv::Mat classes(static_cast<int>(out->height), static_cast<int>(out->width), CV_MAKETYPE(depth, channels), out->data.data());
     double ms = 0.0;
     try {
-      ms = segmenter_->segment(input->image, depth, &probabilities);
+      ms = labels ? segmenter_->segmentLabels(input->image, &classes) : segmenter_->segment(input->image, depth, &classes);
     } catch (const cv::Exception& e) {
       rejections_->reject("image", "segmentation_failed", e.what());
       return;

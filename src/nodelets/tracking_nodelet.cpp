@@ -111,7 +111,7 @@ class TrackingNodelet : public nodelet::Nodelet {
       frame_count_ = 0;
     }
     if (restart_requested_.exchange(false)) odometry_->restart();
-    stamps_[frame_count_] = frame->header;
+    stamps_[frame_count_] = {frame->header, frame->class_map_age};
     class_names_ = frame->class_names;
     const auto odometry_frame =
         odometryFrameFrom(frame, use_edges_ ? field : NearestNeighborFieldConstPtr(), frame_count_++, options_.tracker.levels);
@@ -126,7 +126,7 @@ class TrackingNodelet : public nodelet::Nodelet {
     }
     // A frame without a pose yet (it waits for the initialisation) still gets its status now.
     if (std::none_of(poses.begin(), poses.end(), [&](const FramePose& p) { return p.index == odometry_frame->index; }))
-      publishStatus(frame->header, nullptr);
+      publishStatus(frame->header, frame->class_map_age, nullptr);
     bool new_keyframe = false;
     for (const FramePose& pose : poses) {
       publishPose(pose);
@@ -137,13 +137,14 @@ class TrackingNodelet : public nodelet::Nodelet {
   }
 
   void publishPose(const FramePose& pose) {
-    const auto header = stamps_.find(pose.index);
-    if (header == stamps_.end()) return;
-    const ros::Time stamp = header->second.stamp;
-    publishStatus(header->second, &pose);
+    const auto recent = stamps_.find(pose.index);
+    if (recent == stamps_.end()) return;
+    const std_msgs::Header* header = &recent->second.header;
+    const ros::Time stamp = header->stamp;
+    publishStatus(*header, recent->second.class_map_age, &pose);
     if (!pose.trusted) return;  // never publish a pose that is not trusted
 
-    const std::string& camera_frame = header->second.frame_id;
+    const std::string& camera_frame = header->frame_id;
     bool extrinsic_from_tf = false;
     const Eigen::Isometry3d T_base_cam = extrinsic_->baseFromCamera(camera_frame, &extrinsic_from_tf);
     if (!extrinsic_from_tf && tf_.publish_default_camera_tf && camera_frame != announced_camera_frame_)
@@ -177,9 +178,10 @@ class TrackingNodelet : public nodelet::Nodelet {
     tracer_.published(tracked_publisher_, tracked.get(), stamp);
   }
 
-  void publishStatus(const std_msgs::Header& header, const FramePose* pose) {
+  void publishStatus(const std_msgs::Header& header, float class_map_age, const FramePose* pose) {
     auto status = boost::make_shared<TrackingStatus>();
     status->header = header;
+    status->class_map_age = class_map_age;
     status->scale_is_arbitrary = true;
     if (pose) {
       status->state = pose->state == OdometryState::kTracking ? (pose->recovered ? TrackingStatus::RECOVERED : TrackingStatus::TRACKING)
@@ -210,7 +212,7 @@ class TrackingNodelet : public nodelet::Nodelet {
       MapKeyframe message;
       message.id = static_cast<std::uint32_t>(keyframe->id);
       const auto header = stamps_.find(keyframe->frame->index);
-      message.stamp = header != stamps_.end() ? header->second.stamp : ros::Time(keyframe->frame->time);
+      message.stamp = header != stamps_.end() ? header->second.header.stamp : ros::Time(keyframe->frame->time);
       message.pose_world_camera = toPoseMsg(keyframe->T_world_cam);
       for (const MapPoint& point : keyframe->points) {
         if (!point.hasDepth()) continue;
@@ -264,7 +266,11 @@ class TrackingNodelet : public nodelet::Nodelet {
   PinholeCamera camera_;
   std::unique_ptr<Odometry> odometry_;
   StampOrder stamp_order_{0.0};  ///< the intake passes frames in order: any step back is a new pass
-  std::map<int, std_msgs::Header> stamps_;  ///< headers of recent frames by odometry index (late poses)
+  struct RecentFrame {
+    std_msgs::Header header;
+    float class_map_age;  ///< SemanticEdgeFrame::class_map_age
+  };
+  std::map<int, RecentFrame> stamps_;  ///< recent frames by odometry index (late poses)
   int frame_count_ = 0;
   std::vector<std::string> class_names_;  ///< of the latest frame (the intake's class table)
 };

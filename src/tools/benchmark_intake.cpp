@@ -23,7 +23,9 @@
 #include "semantic_edge_vo/common/class_table.h"
 #include "semantic_edge_vo/support/command_line.h"
 #include "semantic_edge_vo/frontend/point_sampler.h"
+#include "semantic_edge_vo/edges/class_map_carrier.h"
 #include "semantic_edge_vo/edges/segmenter.h"
+#include "semantic_edge_vo/sequences/semantic_map_files.h"
 #include "semantic_edge_vo/edges/semantic_edge_extractor.h"
 #include "semantic_edge_vo/support/test_pattern.h"
 
@@ -125,8 +127,11 @@ std::string classProbabilities(const std::string& model_path, const cv::Mat& gra
   if (!segmenter.ok()) return segmenter.error();
   segmenter.segment(gray, CV_32F, probabilities);  // warm-up
   const double ms = medianMs(runs, [&] { segmenter.segment(gray, CV_32F, probabilities); });
-  std::printf("segmenter %s, input %dx%d, %d OpenCV threads: median %.1f ms per frame (%d runs)\n",
-              model_path.c_str(), options.input_width, options.input_height, cv::getNumThreads(), ms, runs);
+  cv::Mat labels;
+  const double labels_ms = medianMs(runs, [&] { segmenter.segmentLabels(gray, &labels); });
+  std::printf("segmenter %s, input %dx%d, %d OpenCV threads: median %.1f ms per frame with every class's probability, "
+              "%.1f ms with labels (%d runs)\n",
+              model_path.c_str(), options.input_width, options.input_height, cv::getNumThreads(), ms, labels_ms, runs);
   return "";
 }
 
@@ -162,6 +167,31 @@ std::string timeIntake(const IntakeRow& row, const cv::Mat& gray, int runs) {
   std::printf("  %-15s %-27s %6.2f ms = edges+classes %5.2f + sample %5.2f  (%zu edges, %zu with 2+ classes, %zu + %zu sampled)\n",
               toString(row.mode), row.input, median(extract_ms) + median(sample_ms), median(extract_ms), median(sample_ms),
               edges.size(), multi, sample.edge_indices.size(), sample.support_u.size());
+  return "";
+}
+
+/// Reading a precomputed class map (segment_sequence's labels PNG) and carrying one to the next
+/// frame (class_maps newest), each timed over `runs`.
+std::string timeClassMaps(const cv::Mat& probabilities, const cv::Mat& gray, const cv::Mat& next_gray, int runs) {
+  const std::string path = (std::filesystem::temp_directory_path() / "benchmark_intake_labels.png").string();
+  if (std::string error = writeClassLabelsPng(path, probabilities); !error.empty()) return error;
+  cv::Mat labels;
+  std::string error;
+  const double read_ms = medianMs(runs, [&] { error = readClassLabelsPng(path, &labels); });
+  std::filesystem::remove(path);
+  if (!error.empty()) return error;
+  ClassMapCarrier carrier;
+  ClassEvidence evidence{ClassEvidenceForm::kLabels, labels, probabilities.channels()}, carried;
+  double age = 0.0, t = 0.0;
+  int frame = 0;
+  carrier.addImage(t, gray);
+  carrier.setClassMap(t, evidence);
+  const double carry_ms = medianMs(runs, [&] {
+    carrier.addImage(t += 0.1, (++frame & 1) ? next_gray : gray);
+    carrier.carryTo(t, &carried, &age);
+  });
+  std::printf("precomputed labels (segment_sequence's PNG): read %.1f ms; a class map carried to the next frame "
+              "(optical flow and remap): %.1f ms; %d OpenCV threads, median of %d runs\n", read_ms, carry_ms, cv::getNumThreads(), runs);
   return "";
 }
 
@@ -214,6 +244,17 @@ int main(int argc, char** argv) {
   edge_probabilities.convertTo(edge_probabilities8, CV_8U, 255.0);
   const cv::Mat labels = labelsWithConfidence(probabilities);
   const cv::Mat bitmask = bitmaskWithStrength(edge_probabilities, 0.3f);
+  // The next frame of the sequence when there is one, for the carried class map.
+  std::filesystem::path next_path = image_path;
+  next_path.replace_filename("000001.png");
+  cv::Mat next_gray = cv::imread(next_path.string(), cv::IMREAD_GRAYSCALE);
+  if (next_gray.empty()) next_gray = gray;
+  cv::resize(next_gray, next_gray, gray.size(), 0, 0, cv::INTER_LINEAR);
+  error = timeClassMaps(probabilities8, gray, next_gray, runs);
+  if (!error.empty()) {
+    std::fprintf(stderr, "benchmark_intake: %s\n", error.c_str());
+    return 1;
+  }
 
   cv::setNumThreads(1);
   std::printf("intake of a %dx%d frame, %d classes, one core, median thread CPU time of %d runs:\n",

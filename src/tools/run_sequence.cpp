@@ -11,6 +11,7 @@
 #include "semantic_edge_vo/support/command_line.h"
 #include "semantic_edge_vo/support/host_cpu.h"
 #include "semantic_edge_vo/config/graph_config.h"
+#include "semantic_edge_vo/edges/class_map_carrier.h"
 #include "semantic_edge_vo/eval/keyframe_depth_report.h"
 #include "semantic_edge_vo/backend/odometry.h"
 #include "semantic_edge_vo/support/progress_bar.h"
@@ -24,8 +25,9 @@ namespace {
 
 struct Arguments {
   std::string sequence, output, field, intake, segmenter_model, config;  ///< field, intake: empty = config's
-  std::string frames_text;
+  std::string frames_text, latency_text;
   int frames = 0;  ///< 0: all
+  int class_map_latency = 0;  ///< 0: every frame has its own class map
   bool quiet = false;
 };
 
@@ -33,11 +35,14 @@ std::string parse(int argc, char** argv, Arguments* args) {
   const std::string error = parseFlags(argc, argv,
                                        {{"--sequence", &args->sequence}, {"--output", &args->output}, {"--field", &args->field},
                                         {"--intake", &args->intake}, {"--segmenter-model", &args->segmenter_model},
-                                        {"--config", &args->config}, {"--frames", &args->frames_text}},
+                                        {"--config", &args->config}, {"--frames", &args->frames_text},
+                                        {"--class-map-latency", &args->latency_text}},
                                        {{"--quiet", &args->quiet}});
   if (!error.empty()) return error;
   if (const std::string bad = parseNumber("--frames", args->frames_text, &args->frames); !bad.empty()) return bad;
   if (args->frames < 0) return "--frames takes a count >= 0 (0: all)";
+  if (const std::string bad = parseNumber("--class-map-latency", args->latency_text, &args->class_map_latency); !bad.empty()) return bad;
+  if (args->class_map_latency < 0) return "--class-map-latency takes a frame count >= 0";
   if (args->sequence.empty() || args->output.empty()) return "--sequence DIR and --output OUT are required";
   return {};
 }
@@ -66,7 +71,8 @@ std::string applyFlags(const Arguments& args, GraphConfig* options) {
 }
 
 const char* const kUsage = R"(usage: run_sequence --sequence DIR --output OUT [--field snnf|onnf|annf|none]
-           [--intake canny|fused|semantic_edges] [--segmenter-model PATH] [--config FILE] [--frames N] [--quiet]
+           [--intake canny|fused|semantic_edges] [--segmenter-model PATH] [--config FILE] [--frames N]
+           [--class-map-latency N] [--quiet]
 Runs the odometry offline, deterministically, on a KITTI odometry folder (image_0/, calib.txt,
 times.txt) or a synthetic sequence. --config reads a file laid out like config/semantic_edge_vo.yaml
 (the nodelets' parameters; a key no option reads is an error); the flags override it; without it
@@ -75,26 +81,73 @@ every option has its default, which the shipped config equals. Writes OUT/poses_
 OUT/timing.txt (per frame and stage, ms), OUT/parameters.txt (every option used) and prints a summary.
 On a synthetic sequence with true depths (DIR/depth/) it also checks every keyframe's point depths
 against them: OUT/keyframe_depths.txt and a summary line.
+--class-map-latency N replays a live segmenter N frames slower than the camera (fused and
+semantic_edges intakes): only every Nth frame's class map is made, each is ready N frames later, and
+every frame uses the newest ready map carried to it by the optical flow (as the EdgeIntake nodelet
+does with class_maps: newest); frames before the first map get Canny edges with every class.
+timing.txt's class_map_age column gives each frame's map age in frames (-1: none).
 )";
 
 /// What a run produced: the poses in frame order and its times.
 struct RunRecord {
   std::vector<FramePose> poses;
   std::vector<double> intake_ms, segmenter_ms;  ///< per frame
+  std::vector<int> class_map_age;               ///< per frame, frames (-1: no class map)
   double processing_s = 0.0;    ///< wall time of intake + odometry, without reading the files
   double odometry_s = 0.0;      ///< of the odometry alone (tracking + mapping; live, the intake has its own nodelet)
   double odometry_cpu_s = 0.0;  ///< CPU time of all threads during the odometry: what the code costs, whatever the host
   double stolen_share = -1.0;   ///< of the host's CPU time the hypervisor took during the run (< 0: unknown)
 };
 
+/// A live segmenter `latency` frames slower than the camera, replayed: it segments frame 0, is done
+/// `latency` frames later and takes the newest frame then; each frame uses the newest ready map
+/// carried to it (latency 0: every frame its own map).
+class ReplayedSegmenter {
+ public:
+  ReplayedSegmenter(int latency, const ClassMapCarrierOptions& options) : latency_(latency), carrier_(options) {}
+
+  /// The frame's class evidence (replaced by the carried map, or emptied when none is ready) and its
+  /// age in frames (-1: none).
+  int classesFor(int frame, double time, const cv::Mat& gray, ClassEvidence* evidence) {
+    if (latency_ == 0) return 0;
+    carrier_.addImage(time, gray);
+    if (frame % latency_ == 0) {
+      if (segmenting_) carrier_.setClassMap(segmenting_time_, segmenting_map_);
+      segmenting_ = true;
+      segmenting_time_ = time;
+      segmenting_map_ = *evidence;
+      segmenting_map_.values = evidence->values.clone();
+      segmenting_frame_ = frame;
+    }
+    double age = 0.0;
+    ClassEvidence carried;
+    if (!carrier_.carryTo(time, &carried, &age)) {
+      evidence->values.release();
+      return -1;
+    }
+    *evidence = carried;
+    return frame - (segmenting_frame_ - latency_);
+  }
+
+ private:
+  int latency_;
+  ClassMapCarrier carrier_;
+  bool segmenting_ = false;
+  double segmenting_time_ = 0.0;
+  int segmenting_frame_ = 0;
+  ClassEvidence segmenting_map_;
+};
+
 /// Runs the odometry over the first `frames` frames; `depth_report` (synthetic sequences) checks
 /// every keyframe's depths. Returns the error that stopped the run, empty when it ran through.
-std::string runFrames(const GraphConfig& options, SequenceInput& input, int frames, bool quiet,
+std::string runFrames(const GraphConfig& options, SequenceInput& input, int frames, int class_map_latency, bool quiet,
                       std::optional<KeyframeDepthReport>* depth_report, RunRecord* record) {
+  ReplayedSegmenter segmenter(options.frame.intake.mode == IntakeMode::kCanny ? 0 : class_map_latency, options.intake_stream.class_carry);
   const FrameBuilder builder(options.frame, input.camera(), options.classes.names());
   Odometry odometry(options.odometry, input.camera());
   record->intake_ms.assign(static_cast<std::size_t>(frames), 0.0);
   record->segmenter_ms.assign(static_cast<std::size_t>(frames), 0.0);
+  record->class_map_age.assign(static_cast<std::size_t>(frames), 0);
   ProgressBar progress(frames, !quiet);
   HostCpuTimes host_before, host_after;
   const bool host_known = readHostCpuTimes(&host_before);
@@ -105,6 +158,7 @@ std::string runFrames(const GraphConfig& options, SequenceInput& input, int fram
       return "frame " + std::to_string(i) + ": " + error;
     record->segmenter_ms[static_cast<std::size_t>(i)] = input.lastSegmenterMs();
     const auto start = std::chrono::steady_clock::now();
+    record->class_map_age[static_cast<std::size_t>(i)] = segmenter.classesFor(i, input.time(static_cast<std::size_t>(i)), gray, &evidence);
     ExtractionError extraction;
     const auto frame = builder.build(i, input.time(static_cast<std::size_t>(i)), gray, evidence, &extraction);
     if (!frame) return "frame " + std::to_string(i) + ": " + extraction.reason + ": " + extraction.detail;
@@ -135,7 +189,7 @@ struct RunCounts {
 std::string writeOutputs(const std::string& output, const RunRecord& record, const std::string& parameters, RunCounts* counts) {
   Trajectory trajectory;
   std::ostringstream timing;
-  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe guess inlier_ratio motion_deviation keyframe_scale\n";
+  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe guess inlier_ratio motion_deviation keyframe_scale class_map_age\n";
   for (const FramePose& pose : record.poses) {
     trajectory.poses.push_back(pose.T_world_cam);
     trajectory.stamps.push_back(pose.time);
@@ -144,7 +198,8 @@ std::string writeOutputs(const std::string& output, const RunRecord& record, con
     counts->totals.push_back(total);
     timing << pose.index << ' ' << record.segmenter_ms[i] << ' ' << record.intake_ms[i] << ' ' << pose.tracking_ms << ' ' << pose.mapping_ms
            << ' ' << total << ' ' << pose.window_ms << ' ' << pose.tracking.iterations << ' ' << pose.trusted << ' ' << toString(pose.state) << ' ' << pose.keyframe
-           << ' ' << pose.tracking.guess << ' ' << pose.tracking.inlierRatio() << ' ' << pose.motion_deviation << ' ' << pose.keyframe_scale << '\n';
+           << ' ' << pose.tracking.guess << ' ' << pose.tracking.inlierRatio() << ' ' << pose.motion_deviation << ' ' << pose.keyframe_scale
+           << ' ' << record.class_map_age[i] << '\n';
     counts->trusted += pose.trusted;
     counts->keyframes += pose.keyframe;
     counts->lost += pose.state == OdometryState::kLost;
@@ -216,7 +271,7 @@ int main(int argc, char** argv) {
   if (std::filesystem::is_directory(depth_folder)) depth_report.emplace(depth_folder);
   RunRecord record;
   RunCounts counts;
-  error = runFrames(options, input, frames, args.quiet, &depth_report, &record);
+  error = runFrames(options, input, frames, args.class_map_latency, args.quiet, &depth_report, &record);
   if (!error.empty()) {
     std::fprintf(stderr, "\nrun_sequence: %s\n", error.c_str());
     return 1;

@@ -57,5 +57,67 @@ TEST(Segmenter, EnetOnAKittiColourFrame) {
               255.0 * p[classes.indexOf("road")], 1.0);
 }
 
+TEST(Segmenter, LabelsAreTheMostProbableClassOfTheProbabilities) {
+  if (!std::filesystem::exists(kModel) || !std::filesystem::exists(kColorFrame))
+    GTEST_SKIP() << "ENet model or KITTI colour frame absent (" << kModel << ", " << kColorFrame << ")";
+  SegmenterOptions options;
+  options.model_path = kModel;
+  Segmenter segmenter(options, 19);
+  ASSERT_TRUE(segmenter.ok()) << segmenter.error();
+  const cv::Mat image = cv::imread(kColorFrame, cv::IMREAD_COLOR);
+  cv::Mat probabilities, labels;
+  segmenter.segment(image, CV_32F, &probabilities);
+  const double ms = segmenter.segmentLabels(image, &labels);
+  std::cout << "ENet labels: " << ms << " ms\n";
+  ASSERT_EQ(labels.type(), CV_8UC2);
+  ASSERT_EQ(labels.size(), image.size());
+  // Away from class boundaries (the two upsamplings put them a pixel apart) the label is the most
+  // probable class of the interpolated probabilities, and its confidence about that class's
+  // probability (nearest against bilinear interpolation).
+  const auto bestAt = [&](int x, int y) {
+    const float* p = probabilities.ptr<float>(y) + x * 19;
+    return static_cast<int>(std::max_element(p, p + 19) - p);
+  };
+  int same = 0, compared = 0;
+  double confidence_error = 0.0;
+  for (int y = 3; y < image.rows - 3; y += 7)
+    for (int x = 3; x < image.cols - 3; x += 7) {
+      const int best = bestAt(x, y);
+      if (bestAt(x - 3, y - 3) != best || bestAt(x + 3, y - 3) != best || bestAt(x - 3, y + 3) != best || bestAt(x + 3, y + 3) != best)
+        continue;
+      const cv::Vec2b label = labels.at<cv::Vec2b>(y, x);
+      ++compared;
+      same += label[0] == best;
+      confidence_error += std::abs(label[1] - 255.0 * probabilities.ptr<float>(y)[x * 19 + best]);
+    }
+  ASSERT_GT(compared, 1000);
+  std::cout << "labels agree at " << same << " of " << compared << " pixels away from boundaries; confidence off by "
+            << confidence_error / compared << " / 255 on average\n";
+  EXPECT_LT(confidence_error / compared, 8.0);
+  EXPECT_GT(static_cast<double>(same) / compared, 0.99);
+}
+
+TEST(Segmenter, ABackendThisOpenCvLacksFallsBackToTheCpuAndSaysSo) {
+  if (!std::filesystem::exists(kModel) || !std::filesystem::exists(kColorFrame))
+    GTEST_SKIP() << "ENet model or KITTI colour frame absent (" << kModel << ", " << kColorFrame << ")";
+  SegmenterOptions options;
+  options.model_path = kModel;
+  options.backend = "gpu";
+  EXPECT_NE(Segmenter(options, 19).error().find("backend"), std::string::npos);
+  const cv::Mat image = cv::imread(kColorFrame, cv::IMREAD_COLOR);
+  for (const char* backend : {"cuda", "opencl"}) {
+    options.backend = backend;
+    Segmenter segmenter(options, 19);
+    ASSERT_TRUE(segmenter.ok()) << segmenter.error();
+    std::cout << "backend " << backend << ": runs on " << segmenter.device() << (segmenter.notice().empty() ? "" : " (" + segmenter.notice() + ")") << "\n";
+    // Either the device asked for, or the CPU with a notice naming the backend.
+    if (segmenter.device() == "cpu") EXPECT_NE(segmenter.notice().find(backend), std::string::npos);
+    else EXPECT_EQ(segmenter.device(), backend);
+    cv::Mat labels;
+    segmenter.segmentLabels(image, &labels);
+    EXPECT_EQ(labels.at<cv::Vec2b>(image.rows - 20, image.cols / 2)[0], ClassTable::cityscapes().indexOf("road"));
+  }
+}
+
 }  // namespace
 }  // namespace semantic_edge_vo

@@ -2,6 +2,7 @@
 #include <string>
 
 #include "semantic_edge_vo/config/parameter_loader.h"
+#include "semantic_edge_vo/edges/class_map_carrier.h"
 
 namespace semantic_edge_vo {
 
@@ -17,7 +18,11 @@ struct IntakeStreamOptions {
   bool rectify = false;                          ///< undistort with camera_info first
   std::string class_format = "probabilities";    ///< probabilities | labels | bitmask
   std::string edge_source = "canny";             ///< fused: canny | topic
-  double class_wait = 0.5;                       ///< s an image waits for its class map
+  /// same_frame: an image waits up to class_wait for its own class map | newest: it takes the
+  /// newest map at once, carried to it (class_carry): a segmenter slower than the camera
+  std::string class_maps = "same_frame";
+  ClassMapCarrierOptions class_carry;            ///< class_maps: newest
+  double class_wait = 0.5;                       ///< s an image waits for its class map (same_frame)
   std::string on_missing_classes = "canny";      ///< drop | canny
   int max_pending = 10;                          ///< images waiting for class maps, frames
 
@@ -53,7 +58,10 @@ struct MapOutputOptions {
 
 /// The Segmenter nodelet's output.
 struct SegmenterOutputOptions {
-  int output_bits = 32;  ///< 32: 32FC<C> probabilities | 8: 8UC<C> (probability x 255)
+  /// probabilities: every class's (output_bits) | labels: 8UC2 (most probable class, its
+  /// probability x 255), 2 bytes a pixel instead of 19 or 76, for the intake's class_format labels
+  std::string output_format = "probabilities";
+  int output_bits = 32;  ///< probabilities: 32 (32FC<C>) | 8 (8UC<C>, probability x 255)
   int log_every = 100;   ///< frames between logs of the median time
 
   std::string validate() const;

@@ -20,6 +20,9 @@ struct SegmenterOptions {
   /// Model output channel of each class of the class table, in table order; empty: class c reads
   /// output c + 1 (ENet's layout, output 0 = Unlabeled).
   std::vector<int> output_channels;
+  /// cpu | cuda (OpenCV dnn's CUDA backend) | opencl (its OpenCL target): where this OpenCV lacks
+  /// the one asked for, the network runs on the CPU and notice() says so.
+  std::string backend = "cpu";
 
   std::string validate() const;
 };
@@ -38,6 +41,9 @@ class Segmenter {
 
   bool ok() const { return error_.empty(); }
   const std::string& error() const { return error_; }
+  /// What the network runs on ("cpu", "cuda", "opencl"), and why not on the backend asked for.
+  const std::string& device() const { return device_; }
+  const std::string& notice() const { return notice_; }
 
   /// @param[in] image CV_8UC3 (BGR) or CV_8UC1 (replicated to 3 channels)
   /// @param[in] depth CV_32F (probability) or CV_8U (probability x 255)
@@ -45,14 +51,22 @@ class Segmenter {
   ///             place when it already has that size and type (e.g. wrapping a message buffer)
   /// @return wall time of the whole call, ms
   double segment(const cv::Mat& image, int depth, cv::Mat* probabilities);
+  /// The compact form (ClassEvidenceForm::kLabels): CV_8UC2 image-sized, (most probable class,
+  /// its probability x 255), taken at the network's resolution and scaled up (nearest).
+  /// @return wall time of the whole call, ms
+  double segmentLabels(const cv::Mat& image, cv::Mat* labels);
 
  private:
   struct Network;
+  void chooseBackend();
+  /// Per class of the table, CV_32F at the network's output resolution.
+  std::vector<cv::Mat> classProbabilities(const cv::Mat& image);
   SegmenterOptions options_;
   int classes_;
   std::vector<int> channels_;
   std::unique_ptr<Network> network_;
   std::string error_;
+  std::string device_ = "cpu", notice_;
 };
 
 }  // namespace semantic_edge_vo

@@ -47,7 +47,7 @@ class FrameBuilder {
   FrameBuilder(const FrameBuilderOptions& options, const PinholeCamera& camera, std::vector<std::string> class_names);
 
   /// @param[in] gray CV_8UC1 image of the camera's size
-  /// @param[in] classes class evidence (ignored in canny mode)
+  /// @param[in] classes class evidence (ignored in canny mode; empty: Canny edges of every class)
   /// @param[out] error named reason when the inputs are unusable
   std::shared_ptr<const OdometryFrame> build(int index, double time, const cv::Mat& gray, const ClassEvidence& classes,
                                              ExtractionError* error) const;

@@ -21,6 +21,8 @@ class Rectifier {
   /// CameraInfo of the rectified images (cameraInfoOf the camera cameraFromInfo reads from the
   /// calibration): its intrinsics in K and P, no distortion, R identity.
   sensor_msgs::CameraInfo rectifiedInfo() const;
+  /// Whether prepare() made maps.
+  bool ready() const { return !map1_.empty(); }
 
  private:
   sensor_msgs::CameraInfo calibration_;  ///< what the maps were made for

@@ -32,6 +32,7 @@ std::string loadSegmenterOptions(ParameterLoader* loader, SegmenterOptions* opti
   if (mean.size() != 3) return "mean must list 3 values (B, G, R gray levels)";
   std::copy(mean.begin(), mean.end(), options->mean.begin());
   loader->load("output_channels", &options->output_channels, "(empty: class c reads output c + 1)");
+  loader->load("backend", &options->backend, "(cpu | cuda | opencl)");
   return options->validate();
 }
 

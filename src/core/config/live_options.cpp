@@ -12,6 +12,9 @@ std::string IntakeStreamOptions::validate() const {
   if (on_missing_classes != "drop" && on_missing_classes != "canny")
     return "on_missing_classes must be drop or canny (got '" + on_missing_classes + "')";
   if (!(class_wait > 0.0 && max_pending >= 1)) return "need class_wait > 0 s and max_pending >= 1";
+  if (class_maps != "same_frame" && class_maps != "newest") return "class_maps must be same_frame or newest (got '" + class_maps + "')";
+  if (class_maps == "newest" && edge_source != "canny") return "class_maps newest needs edge_source canny (a learned edge map is not carried)";
+  if (const std::string error = class_carry.validate(); !error.empty()) return "class_carry/" + error;
   return "";
 }
 
@@ -30,6 +33,8 @@ std::string MapOutputOptions::validate() const {
 }
 
 std::string SegmenterOutputOptions::validate() const {
+  if (output_format != "probabilities" && output_format != "labels")
+    return "output_format must be probabilities or labels (got '" + output_format + "')";
   if (output_bits != 32 && output_bits != 8) return "output_bits must be 32 or 8";
   if (log_every < 1) return "log_every must be >= 1";
   return "";
@@ -42,6 +47,11 @@ std::string loadIntakeStreamOptions(ParameterLoader* loader, IntakeStreamOptions
   loader->load("rectify", &options->rectify, "(undistort with camera_info's D, K, R, P)");
   loader->load("class_format", &options->class_format, "(probabilities | labels | bitmask)");
   loader->load("edge_source", &options->edge_source, "(canny | topic; fused)");
+  loader->load("class_maps", &options->class_maps, "(same_frame | newest)");
+  loader->load("class_carry/flow_scale", &options->class_carry.flow_scale, "of the image size");
+  loader->load("class_carry/max_age", &options->class_carry.max_age, "s");
+  loader->load("class_carry/remembered_images", &options->class_carry.remembered_images, "frames");
+  loader->load("class_carry/max_loop_error", &options->class_carry.max_loop_error, "px");
   loader->load("class_wait", &options->class_wait, "s");
   loader->load("on_missing_classes", &options->on_missing_classes, "(drop | canny)");
   loader->load("max_pending", &options->max_pending, "frames");
@@ -74,6 +84,7 @@ std::string loadMapOutputOptions(ParameterLoader* loader, MapOutputOptions* opti
 }
 
 std::string loadSegmenterOutputOptions(ParameterLoader* loader, SegmenterOutputOptions* options) {
+  loader->load("output_format", &options->output_format, "(probabilities | labels: 8UC2 class, probability x 255)");
   loader->load("output_bits", &options->output_bits, "(32: 32FC<C> probabilities | 8: 8UC<C>, probability x 255)");
   loader->load("log_every", &options->log_every, "frames");
   return options->validate();

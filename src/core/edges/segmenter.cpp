@@ -21,6 +21,7 @@ std::string SegmenterOptions::validate() const {
     error << "format must be torch, onnx, caffe, tensorflow or darknet (got '" << format << "')";
   else if (input_width < 8 || input_height < 8) error << "input size must be at least 8x8 (got " << input_width << "x" << input_height << ")";
   else if (!(scale > 0.0)) error << "scale must be > 0 (got " << scale << ")";
+  else if (backend != "cpu" && backend != "cuda" && backend != "opencl") error << "backend must be cpu, cuda or opencl (got '" << backend << "')";
   else
     for (int channel : output_channels)
       if (channel < 0) error << "output_channels must be >= 0 (got " << channel << ")";
@@ -54,13 +55,29 @@ Segmenter::Segmenter(const SegmenterOptions& options, int classes)
     return;
   }
   if (network_->net.empty()) error_ = "'" + options_.model_path + "' holds no network";
+  else chooseBackend();
+}
+
+void Segmenter::chooseBackend() {
+  if (options_.backend == "cpu") return;
+  const bool cuda = options_.backend == "cuda";
+  const cv::dnn::Backend backend = cuda ? cv::dnn::DNN_BACKEND_CUDA : cv::dnn::DNN_BACKEND_OPENCV;
+  const cv::dnn::Target target = cuda ? cv::dnn::DNN_TARGET_CUDA : cv::dnn::DNN_TARGET_OPENCL;
+  const std::vector<cv::dnn::Target> targets = cv::dnn::getAvailableTargets(backend);
+  if (std::find(targets.begin(), targets.end(), target) == targets.end()) {
+    notice_ = "backend " + options_.backend + ": this OpenCV (" + CV_VERSION + ") has no " +
+              (cuda ? "CUDA backend (built without CUDA and cuDNN)" : "OpenCL device") + "; the network runs on the CPU";
+    return;
+  }
+  network_->net.setPreferableBackend(backend);
+  network_->net.setPreferableTarget(target);
+  device_ = options_.backend;
 }
 
 Segmenter::~Segmenter() = default;
 
-double Segmenter::segment(const cv::Mat& image, int depth, cv::Mat* probabilities) {
-  CV_Assert(ok() && (image.type() == CV_8UC3 || image.type() == CV_8UC1) && (depth == CV_32F || depth == CV_8U));
-  const auto start = std::chrono::steady_clock::now();
+std::vector<cv::Mat> Segmenter::classProbabilities(const cv::Mat& image) {
+  CV_Assert(ok() && (image.type() == CV_8UC3 || image.type() == CV_8UC1));
   cv::Mat bgr = image;
   if (image.channels() == 1) cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
   const cv::Size input(options_.input_width, options_.input_height);
@@ -85,15 +102,45 @@ double Segmenter::segment(const cv::Mat& image, int depth, cv::Mat* probabilitie
   }
   const cv::Mat inverse_sum = 1.0 / sum;
   std::vector<cv::Mat> selected(static_cast<std::size_t>(classes_));
-  const double output_scale = depth == CV_8U ? 255.0 : 1.0;
-  for (int c = 0; c < classes_; ++c) {
-    cv::Mat probability = exponentials[static_cast<std::size_t>(channels_[static_cast<std::size_t>(c)])].mul(inverse_sum, output_scale);
-    cv::Mat& out = selected[static_cast<std::size_t>(c)];
-    cv::resize(probability, out, image.size(), 0, 0, cv::INTER_LINEAR);
-    if (depth == CV_8U) out.convertTo(out, CV_8U);
+  for (int c = 0; c < classes_; ++c)
+    selected[static_cast<std::size_t>(c)] = exponentials[static_cast<std::size_t>(channels_[static_cast<std::size_t>(c)])].mul(inverse_sum);
+  return selected;
+}
+
+double Segmenter::segment(const cv::Mat& image, int depth, cv::Mat* probabilities) {
+  CV_Assert(depth == CV_32F || depth == CV_8U);
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<cv::Mat> selected = classProbabilities(image);
+  for (cv::Mat& probability : selected) {
+    cv::resize(probability, probability, image.size(), 0, 0, cv::INTER_LINEAR);
+    if (depth == CV_8U) probability.convertTo(probability, CV_8U, 255.0);
   }
   probabilities->create(image.size(), CV_MAKETYPE(depth, classes_));
   cv::merge(selected, *probabilities);
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+double Segmenter::segmentLabels(const cv::Mat& image, cv::Mat* labels) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<cv::Mat> selected = classProbabilities(image);
+  // The most probable class at the network's resolution, then nearest up to the image's: 19
+  // interpolated planes would cost more than the labels are worth.
+  const cv::Size size = selected.front().size();
+  cv::Mat best(size, CV_8UC2);
+  for (int y = 0; y < size.height; ++y) {
+    cv::Vec2b* out = best.ptr<cv::Vec2b>(y);
+    for (int x = 0; x < size.width; ++x) {
+      int label = 0;
+      float top = selected[0].ptr<float>(y)[x];
+      for (int c = 1; c < classes_; ++c) {
+        const float p = selected[static_cast<std::size_t>(c)].ptr<float>(y)[x];
+        if (p > top) top = p, label = c;
+      }
+      out[x] = cv::Vec2b(static_cast<uchar>(label), cv::saturate_cast<uchar>(255.0f * top));
+    }
+  }
+  labels->create(image.size(), CV_8UC2);
+  cv::resize(best, *labels, image.size(), 0, 0, cv::INTER_NEAREST);
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -41,8 +41,15 @@ FrameBuilder::FrameBuilder(const FrameBuilderOptions& options, const PinholeCame
 std::shared_ptr<const OdometryFrame> FrameBuilder::build(int index, double time, const cv::Mat& gray,
                                                          const ClassEvidence& classes, ExtractionError* error) const {
   EdgeSet edges;
-  *error = SemanticEdgeExtractor(options_.intake).extract(gray, classes, cv::Mat(), &edges);
-  if (*error) return nullptr;
+  const SemanticEdgeExtractor extractor(options_.intake);
+  // A frame without a class map yet (a live segmenter's first frames) has Canny edges of every
+  // class, as the EdgeIntake nodelet makes them.
+  if (options_.intake.mode != IntakeMode::kCanny && classes.values.empty()) {
+    edges = extractor.cannyEdges(gray, everyClassMask(class_names_.size()));
+  } else {
+    *error = extractor.extract(gray, classes, cv::Mat(), &edges);
+    if (*error) return nullptr;
+  }
   const PointSample sample = sampler_.sample(gray, edges.view());
 
   auto frame = std::make_shared<OdometryFrame>();
