@@ -218,7 +218,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
       if (!frame.complete)
         NODELET_WARN_STREAM_THROTTLE(5.0, "no " << (frame.classes ? "edge map" : "class map") << " for the image of "
                                                 << frame.image->header.stamp << " within class_wait: "
-                                                << (fallback_to_canny_ ? "made with Canny, every class" : "dropped"));
+                                                << (fallback_to_canny_ ? "made with Canny, no class" : "dropped"));
       if (frame.complete || fallback_to_canny_) process(frame);
     }
   }
@@ -275,7 +275,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
       if (!extractEdges(input, gray, extractor, &edges, &evidence)) return;
       frame->intake_mode = toString(options_.mode);
     } else {
-      edges = extractor.cannyEdges(gray, everyClassMask(static_cast<std::size_t>(classes_.size())));
+      edges = extractor.cannyEdges(gray, 0u);  // class unknown: matched in the all-edges layer
       frame->intake_mode = toString(IntakeMode::kCanny);
     }
     PointSample sample = sampler_.sample(gray, edges.view());
@@ -299,7 +299,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
       return true;
     }
     NODELET_WARN_STREAM_THROTTLE(5.0, "no class map within class_carry/max_age of the image of " << stamp << ": "
-                                      << (fallback_to_canny_ ? "made with Canny, every class" : "dropped"));
+                                      << (fallback_to_canny_ ? "made with Canny, no class" : "dropped"));
     return false;
   }
 

@@ -1,11 +1,16 @@
 // Segmenter: image -> per-pixel class probabilities (sensor_msgs/Image 32FC<C> or 8UC<C>) from an
 // OpenCV dnn model, for the EdgeIntake's fused mode; reports its time per frame.
+#include <sys/resource.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <fstream>
 #include <memory>
 #include <vector>
 
 #include <cv_bridge/cv_bridge.h>
 #include <image_transport/image_transport.h>
+#include <opencv2/core/utility.hpp>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <sensor_msgs/image_encodings.h>
@@ -46,6 +51,8 @@ class SegmenterNodelet : public nodelet::Nodelet {
       NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
       return;
     }
+    if (output_.threads > 0) cv::setNumThreads(output_.threads);
+    niceSession();
     if (!segmenter_->notice().empty()) NODELET_WARN_STREAM(segmenter_->notice());
     NODELET_INFO_STREAM("the network runs on: " << segmenter_->device());
     classes_ = classes.size();
@@ -54,6 +61,20 @@ class SegmenterNodelet : public nodelet::Nodelet {
     image_transport::ImageTransport transport(node);
     // Queue 1: a slow network keeps up by skipping frames, never by falling behind.
     image_subscriber_ = transport.subscribe("image", 1, &SegmenterNodelet::onImage, this);
+  }
+
+  /// roslaunch starts each node in a session of its own, and with the kernel's autogroups a nice
+  /// level only ranks a process within its session: the process's nice level (the launch file's
+  /// `nice` prefix) is given to its session too, so the odometry's process goes first.
+  void niceSession() {
+    errno = 0;
+    const int nice = getpriority(PRIO_PROCESS, 0);
+    if (errno != 0 || nice <= 0) return;
+    std::ofstream autogroup("/proc/self/autogroup");
+    if (!autogroup) return;  // no autogroups: the nice level alone ranks the processes
+    autogroup << nice << std::flush;
+    if (autogroup) NODELET_INFO_STREAM("nice " << nice << " for this process and its session (autogroup)");
+    else NODELET_WARN_STREAM("could not set the session's (autogroup's) nice level to " << nice << ": the network may slow the odometry");
   }
 
   void onImage(const sensor_msgs::ImageConstPtr& image) {

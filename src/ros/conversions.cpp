@@ -118,6 +118,7 @@ std::shared_ptr<const OdometryFrame> odometryFrameFrom(const SemanticEdgeFrameCo
                      const_cast<std::uint8_t*>(frame->image.data.data()), frame->image.step);
   result->pyramid = std::make_shared<ImagePyramid>(gray, cameraFromInfo(frame->camera_info), pyramid_levels);
   result->candidates = candidatesFrom(edgeSetView(*frame), frame->sampled_edges, frame->support_u, frame->support_v);
+  result->classes_known = frame->class_map_age >= 0.0f || frame->class_names.size() <= 1;
   if (field) {
     std::string error;
     result->field = fieldView(*field, &error);

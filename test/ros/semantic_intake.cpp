@@ -206,12 +206,13 @@ TEST_F(SemanticIntake, FusedPairingFallbackAndBadClassMaps) {
     for (std::uint32_t mask : frame->edge_class_mask) both += mask == ((1u << kRoad) | (1u << kCar));
     EXPECT_GT(both, static_cast<std::size_t>(kHeight / 2)) << "boundary edges must carry road and car";
   }
-  // No class map: after class_wait, Canny edges with every class bit.
+  // No class map: after class_wait, Canny edges of no class (tracking matches them as ANNF does).
   const SemanticEdgeFrameConstPtr fallback = frameAt(send(nullptr));
   ASSERT_TRUE(fallback) << "no fallback frame";
   EXPECT_EQ(fallback->intake_mode, "canny");
+  EXPECT_EQ(fallback->class_map_age, -1.0f);
   ASSERT_FALSE(fallback->edge_class_mask.empty());
-  EXPECT_EQ(fallback->edge_class_mask[0], (1u << kClasses) - 1u);
+  EXPECT_EQ(fallback->edge_class_mask[0], 0u);
   EXPECT_TRUE(logged("no class map", "Canny"));
 
   struct Case {
@@ -292,6 +293,50 @@ TEST_F(SemanticIntake, SemanticEdgesFromTheBitmaskForm) {
 TEST_F(SemanticIntake, ARectifyingFusedIntakeUndistortsImageAndClassesIntoThePCamera) { expectRectifiedBoundary("/cam4", true); }
 
 TEST_F(SemanticIntake, ARectifyingCannyIntakeUndistortsTheImageIntoThePCamera) { expectRectifiedBoundary("/cam5", false); }
+
+TEST_F(SemanticIntake, NewestClassMapsAreCarriedToTheFramesAfterTheirImage) {
+  ros::Publisher images = node_.advertise<sensor_msgs::Image>("/cam6/image", 5);
+  ros::Publisher info = node_.advertise<sensor_msgs::CameraInfo>("/cam6/camera_info", 5);
+  ros::Publisher labels = node_.advertise<sensor_msgs::Image>("/cam6/class_labels", 5);
+  std::map<ros::Time, SemanticEdgeFrameConstPtr> frames;
+  const ros::Subscriber subscriber = node_.subscribe<SemanticEdgeFrame>("/cam6/edge_frame", 10, [&](const SemanticEdgeFrameConstPtr& f) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    frames[f->header.stamp] = f;
+  });
+  ASSERT_TRUE(waitFor([&] { return images.getNumSubscribers() > 0 && labels.getNumSubscribers() > 0; }, 10.0));
+  ros::WallDuration(0.5).sleep();
+  cv::Mat label_map(kHeight, kWidth, CV_8UC2, cv::Scalar(kRoad, 230));
+  label_map.colRange(kBoundary, kWidth).setTo(cv::Scalar(kCar, 200));
+  const auto frameOf = [&](const ros::Time& stamp) {
+    SemanticEdgeFrameConstPtr frame;
+    waitFor([&] { return frames.count(stamp) && (frame = frames[stamp]); });
+    return frame;
+  };
+  // The first image has no map yet: made at once, with Canny edges of no class.
+  const ros::Time first = ros::Time::now();
+  images.publish(imageMsg(boundaryImage(), "mono8", first));
+  info.publish(infoMsg(first));
+  const SemanticEdgeFrameConstPtr without = frameOf(first);
+  ASSERT_TRUE(without) << "the first frame must not wait for its class map";
+  EXPECT_EQ(without->class_map_age, -1.0f);
+  EXPECT_EQ(without->intake_mode, "canny");
+  // Its map comes late; the next images take it, carried, with its age.
+  labels.publish(imageMsg(label_map, "8UC2", first));
+  ros::WallDuration(0.3).sleep();
+  const std::uint32_t both = (1u << kRoad) | (1u << kCar);
+  for (int k = 1; k <= 2; ++k) {
+    const ros::Time later = first + ros::Duration(0.1 * k);
+    images.publish(imageMsg(boundaryImage(), "mono8", later));
+    info.publish(infoMsg(later));
+    const SemanticEdgeFrameConstPtr frame = frameOf(later);
+    ASSERT_TRUE(frame) << "no frame " << k << " after the class map";
+    EXPECT_EQ(frame->intake_mode, "fused");
+    EXPECT_NEAR(frame->class_map_age, 0.1 * k, 1e-3);
+    std::size_t with_both = 0;
+    for (std::uint32_t mask : frame->edge_class_mask) with_both += mask == both;
+    EXPECT_GT(with_both, static_cast<std::size_t>(kHeight / 2)) << "the carried map must give the boundary both classes";
+  }
+}
 
 TEST_F(SemanticIntake, SegmenterPublishesEnetProbabilities) {
   if (!std::filesystem::exists(kModel) || !std::filesystem::exists(kColorFrame))

@@ -63,6 +63,10 @@ struct SegmenterOutputOptions {
   std::string output_format = "probabilities";
   int output_bits = 32;  ///< probabilities: 32 (32FC<C>) | 8 (8UC<C>, probability x 255)
   int log_every = 100;   ///< frames between logs of the median time
+  /// OpenCV threads of the Segmenter's process (cv::setNumThreads: process-wide, so it applies to
+  /// every nodelet of the manager it is loaded in; the launch file runs it standalone); 0: OpenCV's
+  /// choice. 1 leaves the other core of two to the odometry.
+  int threads = 1;
 
   std::string validate() const;
 };

@@ -22,6 +22,9 @@ struct OdometryFrame {
   NearestNeighborFieldView field;              ///< valid while field_storage lives
   std::shared_ptr<const void> field_storage;   ///< owns what `field` views (built data or a message)
   std::vector<MapPoint> candidates;            ///< sampled edge points (with classes) and supportive points, no depth yet
+  /// false: the intake had no class map for it (its edges have no class): matched in the field's
+  /// all-edges layer, as ANNF matches, and no evidence on the classes' reliability
+  bool classes_known = true;
 
   const NearestNeighborFieldView* fieldOrNull() const { return has_field ? &field : nullptr; }
 };
@@ -47,7 +50,7 @@ class FrameBuilder {
   FrameBuilder(const FrameBuilderOptions& options, const PinholeCamera& camera, std::vector<std::string> class_names);
 
   /// @param[in] gray CV_8UC1 image of the camera's size
-  /// @param[in] classes class evidence (ignored in canny mode; empty: Canny edges of every class)
+  /// @param[in] classes class evidence (ignored in canny mode; empty: Canny edges of no class)
   /// @param[out] error named reason when the inputs are unusable
   std::shared_ptr<const OdometryFrame> build(int index, double time, const cv::Mat& gray, const ClassEvidence& classes,
                                              ExtractionError* error) const;

@@ -13,6 +13,7 @@
 namespace semantic_edge_vo {
 
 using odometry_detail::elapsedMs;
+using odometry_detail::edgeLayersOf;
 using odometry_detail::gray8;
 
 cv::Mat odometry_detail::gray8(const OdometryFrame& frame) {
@@ -112,7 +113,8 @@ std::vector<Eigen::Isometry3d> Odometry::guesses(const Keyframe& keyframe, const
 
 bool Odometry::relocalize(const std::shared_ptr<const OdometryFrame>& frame, std::vector<FramePose>* poses) {
   const auto start = std::chrono::steady_clock::now();
-  const TrackingResult result = tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_, *frame), last_inlier_ratio_);
+  const TrackingResult result =
+      tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_, *frame), last_inlier_ratio_, edgeLayersOf(*frame));
   // Only a map that explains the frame about as well as it did the frames before the loss: a loss
   // of the view (an occlusion, a flash) finds it again; a map gone wrong (traffic close by made the
   // loss, and it explains the next frame just above min_inlier_ratio) is initialised anew.
@@ -133,7 +135,7 @@ bool Odometry::relocalize(const std::shared_ptr<const OdometryFrame>& frame, std
 FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<Eigen::Isometry3d> initial = guesses(*active_, *frame);
-  TrackingResult result = tracker_.track(*frame->pyramid, frame->fieldOrNull(), initial, last_inlier_ratio_);
+  TrackingResult result = tracker_.track(*frame->pyramid, frame->fieldOrNull(), initial, last_inlier_ratio_, edgeLayersOf(*frame));
   double motion_deviation = 0.0;
   const bool consistent = !result.ok || retrackUnlessConsistent(*frame, initial.front(), &result, &motion_deviation);
   FramePose pose = trackedPose(frame, result, consistent, elapsedMs(start));
@@ -205,7 +207,7 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   const auto mapping_start = std::chrono::steady_clock::now();
   std::shared_ptr<const SharedClassEdgeTest> frame_edges = refineDepths(*frame, pose.tracking.T_cam_kf);
   followCorners(*frame);
-  if (frame->has_field) class_reliability_.observe(*active_, pose.tracking.T_cam_kf, frame->field);
+  if (frame->has_field && frame->classes_known) class_reliability_.observe(*active_, pose.tracking.T_cam_kf, frame->field);
   ++frames_since_keyframe_;
   const bool few_in_view = pose.tracking.points_in_view < options_.keyframe_min_in_view * pose.tracking.points;
   // The interval only while the camera travels: standing, a keyframe would measure no depth.

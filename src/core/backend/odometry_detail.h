@@ -17,5 +17,8 @@ inline double elapsedMs(std::chrono::steady_clock::time_point since) {
 /// The frame's full-resolution image, 8 bits (KLT, the two-view initialisation).
 cv::Mat gray8(const OdometryFrame& frame);
 
+/// The layers the frame's edges are matched in: a frame without classes, in the all-edges layer.
+inline EdgeLayers edgeLayersOf(const OdometryFrame& frame) { return frame.classes_known ? EdgeLayers::kOwn : EdgeLayers::kAllEdges; }
+
 }  // namespace odometry_detail
 }  // namespace semantic_edge_vo

@@ -112,7 +112,7 @@ std::vector<FramePose> Odometry::posesOfWaitingFrames(const Keyframe& keyframe, 
     const auto frame_start = std::chrono::steady_clock::now();
     const Eigen::Isometry3d guess = se3Exp(static_cast<double>(j) / static_cast<double>(n - 1) * se3Log(T_last_first));
     const OdometryFrame& frame_j = *waiting_[j].frame;
-    const TrackingResult result = tracker_.track(*frame_j.pyramid, frame_j.fieldOrNull(), {guess});
+    const TrackingResult result = tracker_.track(*frame_j.pyramid, frame_j.fieldOrNull(), {guess}, 1.0, odometry_detail::edgeLayersOf(frame_j));
     FramePose pose;
     pose.index = frame_j.index;
     pose.time = frame_j.time;

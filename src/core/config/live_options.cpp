@@ -37,6 +37,7 @@ std::string SegmenterOutputOptions::validate() const {
     return "output_format must be probabilities or labels (got '" + output_format + "')";
   if (output_bits != 32 && output_bits != 8) return "output_bits must be 32 or 8";
   if (log_every < 1) return "log_every must be >= 1";
+  if (threads < 0) return "threads must be >= 0 (0: OpenCV's choice)";
   return "";
 }
 
@@ -87,6 +88,7 @@ std::string loadSegmenterOutputOptions(ParameterLoader* loader, SegmenterOutputO
   loader->load("output_format", &options->output_format, "(probabilities | labels: 8UC2 class, probability x 255)");
   loader->load("output_bits", &options->output_bits, "(32: 32FC<C> probabilities | 8: 8UC<C>, probability x 255)");
   loader->load("log_every", &options->log_every, "frames");
+  loader->load("threads", &options->threads, "(OpenCV threads of the process; 0: OpenCV's choice)");
   return options->validate();
 }
 

@@ -42,10 +42,11 @@ std::shared_ptr<const OdometryFrame> FrameBuilder::build(int index, double time,
                                                          const ClassEvidence& classes, ExtractionError* error) const {
   EdgeSet edges;
   const SemanticEdgeExtractor extractor(options_.intake);
-  // A frame without a class map yet (a live segmenter's first frames) has Canny edges of every
-  // class, as the EdgeIntake nodelet makes them.
-  if (options_.intake.mode != IntakeMode::kCanny && classes.values.empty()) {
-    edges = extractor.cannyEdges(gray, everyClassMask(class_names_.size()));
+  // A frame without a class map yet (a live segmenter's first frames) has Canny edges of no class,
+  // as the EdgeIntake nodelet makes them.
+  const bool classes_known = options_.intake.mode == IntakeMode::kCanny || !classes.values.empty();
+  if (!classes_known) {
+    edges = extractor.cannyEdges(gray, 0u);
   } else {
     *error = extractor.extract(gray, classes, cv::Mat(), &edges);
     if (*error) return nullptr;
@@ -55,6 +56,7 @@ std::shared_ptr<const OdometryFrame> FrameBuilder::build(int index, double time,
   auto frame = std::make_shared<OdometryFrame>();
   frame->index = index;
   frame->time = time;
+  frame->classes_known = classes_known;
   frame->pyramid = std::make_shared<ImagePyramid>(gray, camera_, options_.pyramid_levels);
   frame->candidates = candidatesFrom(edges.view(), sample.edge_indices, sample.support_u, sample.support_v);
   if (options_.use_field) {
