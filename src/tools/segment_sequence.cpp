@@ -22,9 +22,9 @@ namespace {
 const char* const kUsage = R"(usage: segment_sequence --sequence DIR --segmenter-model PATH [--output OUT] [--config FILE] [--quiet]
 Runs the segmentation network (OpenCV dnn; e.g. ENet's model-best.opencv.net) on every frame of a
 KITTI odometry folder (image_2/ colour frames when present, else image_0/) and writes its labels to
-OUT/%06d.png (default OUT: DIR/class_probability), 4 x 8-bit: cv::imwrite channels (most probable
-class, its probability x 255, second class, its probability x 255), the layout of synthetic
-sequences. With OUT the default, run_sequence --intake fused then reads them instead of running the
+OUT/%06d.png (default OUT: DIR/class_probability), one 16-bit channel a pixel: the most probable
+class + 256 x its probability x 255 (the labels form, half the bytes of the synthetic sequences'
+4-channel layout, which is read too). With OUT the default, run_sequence --intake fused then reads them instead of running the
 network; kitti_to_bag --semantics-labels OUT puts them in a bag for the launch file's fused intake
 (class_format labels). OUT must not hold files yet. --config reads the segmenter block and the class
 table (edge_intake/classes) of a file laid out like config/semantic_edge_vo.yaml.

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "semantic_edge_vo/sequences/semantic_map_files.h"
 
@@ -23,6 +24,17 @@ TEST(SemanticMapFiles, ClassLabelsWrittenFromProbabilitiesReadBackAsTheLabelsFor
   EXPECT_EQ(labels.at<cv::Vec2b>(0, 0), cv::Vec2b(1, 200)) << "most probable class and its probability";
   EXPECT_EQ(labels.at<cv::Vec2b>(0, 1), cv::Vec2b(0, 90)) << "a tie goes to the lower class";
   EXPECT_EQ(labels.at<cv::Vec2b>(0, 2), cv::Vec2b(0, 0));
+  std::filesystem::remove(path);
+}
+
+TEST(SemanticMapFiles, TheSyntheticFourChannelLayoutStillReads) {
+  cv::Mat top_two(2, 2, CV_8UC4, cv::Scalar(13, 240, 0, 10));
+  const std::string path = ::testing::TempDir() + "/labels4.png";
+  ASSERT_TRUE(cv::imwrite(path, top_two));
+  cv::Mat labels;
+  ASSERT_EQ(readClassLabelsPng(path, &labels), "");
+  ASSERT_EQ(labels.type(), CV_8UC2);
+  EXPECT_EQ(labels.at<cv::Vec2b>(1, 1), cv::Vec2b(13, 240));
   std::filesystem::remove(path);
 }
 

@@ -24,8 +24,20 @@ std::string channelError(const std::string& path, int channels, const char* expe
 }  // namespace
 
 std::string readClassLabelsPng(const std::string& path, cv::Mat* labels) {
-  cv::Mat image;
-  if (std::string error = read8Bit(path, &image); !error.empty()) return error;
+  if (!std::filesystem::exists(path)) return path + ": no such file";
+  const cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (image.empty()) return path + ": not a readable image";
+  if (image.type() == CV_16UC1) {
+    cv::Mat pair(image.size(), CV_8UC2);
+    for (int y = 0; y < image.rows; ++y) {
+      const std::uint16_t* in = image.ptr<std::uint16_t>(y);
+      auto* out = pair.ptr<cv::Vec2b>(y);
+      for (int x = 0; x < image.cols; ++x) out[x] = cv::Vec2b(static_cast<std::uint8_t>(in[x] & 0xff), static_cast<std::uint8_t>(in[x] >> 8));
+    }
+    *labels = pair;
+    return "";
+  }
+  if (image.depth() != CV_8U) return path + ": expected 8 bits per channel, or one 16-bit channel, found " + std::to_string(8 * image.elemSize1()) + " bits";
   if (image.channels() == 1) {
     *labels = image;
   } else if (image.channels() == 4) {
@@ -35,8 +47,8 @@ std::string readClassLabelsPng(const std::string& path, cv::Mat* labels) {
     *labels = pair;
   } else {
     return channelError(path, image.channels(),
-                        "1 channel (class index) or 4 (class index, confidence x 255, ...): a colour-coded "
-                        "segmentation is not a label map");
+                        "1 channel (class index; 16 bits: class + 256 x confidence x 255) or 4 (class index, confidence x 255, ...): "
+                        "a colour-coded segmentation is not a label map");
   }
   return "";
 }
@@ -46,26 +58,21 @@ std::string writeClassLabelsPng(const std::string& path, const cv::Mat& probabil
   if (probabilities.depth() != CV_8U || classes < 1 || classes > 255)
     return path + ": expected 8-bit probabilities of 1 to 255 classes, got depth " + std::to_string(probabilities.depth()) + " and " +
            std::to_string(classes) + " channel(s)";
-  cv::Mat top_two(probabilities.size(), CV_8UC4);
+  // One 16-bit value a pixel, class + 256 x confidence: half the bytes of the 4-channel layout, and
+  // the quickest of them to read.
+  cv::Mat packed(probabilities.size(), CV_16UC1);
   for (int y = 0; y < probabilities.rows; ++y) {
     const std::uint8_t* p = probabilities.ptr<std::uint8_t>(y);
-    auto* out = top_two.ptr<cv::Vec4b>(y);
+    auto* out = packed.ptr<std::uint16_t>(y);
     for (int x = 0; x < probabilities.cols; ++x, p += classes) {
-      int first = 0, second = classes > 1 ? 1 : 0;
-      if (classes > 1 && p[1] > p[0]) std::swap(first, second);
-      for (int c = 2; c < classes; ++c) {
-        if (p[c] > p[first]) {
-          second = first;
-          first = c;
-        } else if (p[c] > p[second]) {
-          second = c;
-        }
-      }
-      out[x] = cv::Vec4b(static_cast<std::uint8_t>(first), p[first], static_cast<std::uint8_t>(second), classes > 1 ? p[second] : 0);
+      int best = 0;
+      for (int c = 1; c < classes; ++c)
+        if (p[c] > p[best]) best = c;
+      out[x] = static_cast<std::uint16_t>(best | p[best] << 8);
     }
   }
   try {
-    if (!cv::imwrite(path, top_two)) return path + ": could not be written";
+    if (!cv::imwrite(path, packed)) return path + ": could not be written";
   } catch (const cv::Exception& e) {
     return path + ": " + e.what();
   }
