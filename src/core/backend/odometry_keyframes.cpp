@@ -50,9 +50,6 @@ bool Odometry::makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, s
   else keyframe->points = std::move(from_tracked_pose);
   setActiveKeyframe(keyframe);
   frames_since_keyframe_ = 0;
-  // The frames before move with the new keyframe's settled pose, so the velocity stays the tracked
-  // one: the window's correction is not motion the next frames repeat.
-  motion_.correct(keyframe->T_world_cam * pose->T_world_cam.inverse());
   pose->T_world_cam = keyframe->T_world_cam;
   return true;
 }
