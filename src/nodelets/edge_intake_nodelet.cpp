@@ -290,7 +290,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
   }
 
   /// class_maps newest: the newest class map carried to the image, and its age; false when none is
-  /// recent enough (warned: the frame is made with Canny edges of every class, or dropped).
+  /// recent enough (warned: the frame is made with Canny edges of no class, or dropped).
   bool carriedClasses(const ros::Time& stamp, const cv::Mat& gray, ClassEvidence* evidence, float* age) {
     carrier_.addImage(stamp.toSec(), gray);
     double seconds = 0.0;
