@@ -36,5 +36,18 @@ TEST(MotionModel, AStandingCarIsAlsoGuessedToDriveOffAndDeadReckoningEnds) {
   EXPECT_DOUBLE_EQ(lost.framesToExtrapolate({next, 0.1 * next}), 0.0);
 }
 
+TEST(MotionModel, TheTrackedVelocityLeavesOutTheWindowsCorrectionOfTheLastPose) {
+  MotionModel model;
+  for (int i = 0; i < 3; ++i) model.remember(forward(1.0 * i), {i, 0.1 * i}, true);
+  // Frame 3 was tracked at z = 3; the window then moved it (a keyframe) by 0.4 along z.
+  const Eigen::Isometry3d correction = forward(0.4);
+  model.remember(correction * forward(3.0), {3, 0.3}, true, correction);
+  EXPECT_NEAR(model.predict({4, 0.4}).translation().z(), 4.8, 1e-9) << "the prediction repeats the correction";
+  EXPECT_NEAR(model.predictAtTrackedVelocity({4, 0.4}).translation().z(), 4.4, 1e-9) << "one frame's travel from the moved pose";
+  // The next pose has no correction of its own: both predictions agree again.
+  model.remember(forward(4.4), {4, 0.4}, true);
+  EXPECT_NEAR(model.predict({5, 0.5}).translation().z(), model.predictAtTrackedVelocity({5, 0.5}).translation().z(), 1e-12);
+}
+
 }  // namespace
 }  // namespace semantic_edge_vo

@@ -69,6 +69,8 @@ struct FramePose {
   double motion_deviation = 0.0;
   /// A keyframe made (or refused) at this frame: the scale of its points against the map's (1: none).
   double keyframe_scale = 1.0;
+  /// How the windowed optimisation moved the pose after it was tracked (a new keyframe's; else identity).
+  Eigen::Isometry3d window_correction = Eigen::Isometry3d::Identity();
   double tracking_ms = 0.0, mapping_ms = 0.0;  ///< on the caller's thread (mapping: depths, keyframes, waiting)
   double window_ms = 0.0;  ///< the windowed optimisation merged at this frame (on its own thread when deferred)
 };

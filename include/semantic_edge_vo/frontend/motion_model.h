@@ -25,8 +25,10 @@ class MotionModel {
   static constexpr double kStandingFraction = 0.1;     ///< of the driving travel: standing, or nearly
   static constexpr int kMaxDeadReckoning = 50;         ///< frames predicted on from the last trusted pose: 5 s at 10 Hz
 
-  /// A final pose (trusted, or a prediction).
-  void remember(const Eigen::Isometry3d& T_world_cam, const FrameStamp& stamp, bool trusted);
+  /// A final pose (trusted, or a prediction); `window_correction`: how the windowed optimisation
+  /// moved it after it was tracked (see predictAtTrackedVelocity).
+  void remember(const Eigen::Isometry3d& T_world_cam, const FrameStamp& stamp, bool trusted,
+                const Eigen::Isometry3d& window_correction = Eigen::Isometry3d::Identity());
   /// Moves the last two poses with a correction of the map (the windowed optimisation's).
   void correct(const Eigen::Isometry3d& correction);
   /// Forgets the driving travel (it was at another map's scale).
@@ -46,6 +48,10 @@ class MotionModel {
   Eigen::Isometry3d frameMotion() const;
   /// The frame's pose at constant velocity from the last pose (framesToExtrapolate).
   Eigen::Isometry3d predict(const FrameStamp& frame) const;
+  /// As predict(), at the velocity the last pose was tracked at: without the window's correction of
+  /// it, which is a move of the map, not motion the next frames repeat. What a frame's tracked motion
+  /// is checked against (the tracker still starts from predict(), the guess the map's move suits).
+  Eigen::Isometry3d predictAtTrackedVelocity(const FrameStamp& frame) const;
   /// The median travel (rotation left out) of the newest `newest` driving motions (zero before any).
   Vector6d drivingMotion(std::size_t newest = kDrivingMotions) const;
   /// Where the frame may be, best first: constant velocity, no motion, half and double the velocity,
@@ -55,6 +61,7 @@ class MotionModel {
  private:
   // The last two final poses and whether any exists.
   Eigen::Isometry3d T_world_last_ = Eigen::Isometry3d::Identity(), T_world_before_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d last_window_correction_ = Eigen::Isometry3d::Identity();  ///< of the last pose
   int poses_seen_ = 0;
   FrameStamp last_stamp_, before_stamp_;  ///< of those two poses
   FrameStamp last_trusted_stamp_;

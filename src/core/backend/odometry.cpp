@@ -146,7 +146,7 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
 FrameAgreement Odometry::agreementOf(const OdometryFrame& frame, const TrackingResult& result) const {
   const Eigen::Isometry3d T_last_world = motion_.lastPose().inverse();
   const Eigen::Vector3d travel = (T_last_world * active_->T_world_cam * result.T_cam_kf.inverse()).translation();
-  const Eigen::Vector3d predicted = (T_last_world * motion_.predict(stampOf(frame))).translation();
+  const Eigen::Vector3d predicted = (T_last_world * motion_.predictAtTrackedVelocity(stampOf(frame))).translation();
   const double usual_travel = motion_.drivingMotion().head<3>().norm() * motion_.framesBetween(motion_.lastStamp(), stampOf(frame));
   const double usual_ratio = median({recent_inlier_ratios_.begin(), recent_inlier_ratios_.end()});
   return compareWithRecentFrames(result.inlierRatio(), usual_ratio, options_.tracker.accept_inlier_ratio, travel, predicted,
@@ -261,7 +261,7 @@ void Odometry::followCorners(const OdometryFrame& frame) {
 }
 
 void Odometry::remember(const FramePose& pose) {
-  motion_.remember(pose.T_world_cam, {pose.index, pose.time}, pose.trusted);
+  motion_.remember(pose.T_world_cam, {pose.index, pose.time}, pose.trusted, pose.window_correction);
   if (pose.trusted && pose.tracking.ok) keepLast(pose.tracking.inlierRatio(), kRecentInlierRatios, &recent_inlier_ratios_);
 }
 

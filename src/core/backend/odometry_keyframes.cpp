@@ -50,6 +50,7 @@ bool Odometry::makeKeyframe(const std::shared_ptr<const OdometryFrame>& frame, s
   else keyframe->points = std::move(from_tracked_pose);
   setActiveKeyframe(keyframe);
   frames_since_keyframe_ = 0;
+  pose->window_correction = keyframe->T_world_cam * pose->T_world_cam.inverse();
   pose->T_world_cam = keyframe->T_world_cam;
   return true;
 }

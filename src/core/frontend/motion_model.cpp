@@ -6,9 +6,11 @@
 #include "semantic_edge_vo/common/robust_statistics.h"
 
 namespace semantic_edge_vo {
-void MotionModel::remember(const Eigen::Isometry3d& T_world_cam, const FrameStamp& stamp, bool trusted) {
+void MotionModel::remember(const Eigen::Isometry3d& T_world_cam, const FrameStamp& stamp, bool trusted,
+                           const Eigen::Isometry3d& window_correction) {
   T_world_before_ = T_world_last_;
   T_world_last_ = orthonormalized(T_world_cam);
+  last_window_correction_ = window_correction;
   before_stamp_ = last_stamp_;
   last_stamp_ = stamp;
   if (trusted) last_trusted_stamp_ = last_stamp_;
@@ -54,6 +56,14 @@ Eigen::Isometry3d MotionModel::predict(const FrameStamp& frame) const {
   const double frames = framesToExtrapolate(frame);
   if (frames == 1.0) return T_world_last_ * frameMotion();
   return T_world_last_ * se3Exp(frames * se3Log(frameMotion()));
+}
+
+Eigen::Isometry3d MotionModel::predictAtTrackedVelocity(const FrameStamp& frame) const {
+  if (poses_seen_ < 2) return T_world_last_;
+  const Eigen::Isometry3d tracked = T_world_before_.inverse() * last_window_correction_.inverse() * T_world_last_;
+  const double between = framesBetween(before_stamp_, last_stamp_), frames = framesToExtrapolate(frame);
+  const Eigen::Isometry3d per_frame = between == 1.0 ? tracked : se3Exp(se3Log(tracked) / between);
+  return frames == 1.0 ? T_world_last_ * per_frame : T_world_last_ * se3Exp(frames * se3Log(per_frame));
 }
 
 Vector6d MotionModel::drivingMotion(std::size_t newest) const {
