@@ -59,6 +59,11 @@ class MotionModel {
   std::vector<Eigen::Isometry3d> guesses(const FrameStamp& frame) const;
 
  private:
+  /// The motion of one frame interval, of `motion` from the before pose to the last.
+  Eigen::Isometry3d perFrame(const Eigen::Isometry3d& motion) const;
+  /// The last pose moved on at `per_frame` to the frame (framesToExtrapolate intervals).
+  Eigen::Isometry3d extrapolate(const Eigen::Isometry3d& per_frame, const FrameStamp& frame) const;
+
   // The last two final poses and whether any exists.
   Eigen::Isometry3d T_world_last_ = Eigen::Isometry3d::Identity(), T_world_before_ = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d last_window_correction_ = Eigen::Isometry3d::Identity();  ///< of the last pose

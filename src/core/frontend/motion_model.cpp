@@ -45,25 +45,27 @@ double MotionModel::framesToExtrapolate(const FrameStamp& frame) const {
   return std::min(framesBetween(last_stamp_, frame), left);
 }
 
-Eigen::Isometry3d MotionModel::frameMotion() const {
-  if (poses_seen_ < 2) return Eigen::Isometry3d::Identity();
-  const Eigen::Isometry3d motion = T_world_before_.inverse() * T_world_last_;
+Eigen::Isometry3d MotionModel::perFrame(const Eigen::Isometry3d& motion) const {
   const double frames = framesBetween(before_stamp_, last_stamp_);
   return frames == 1.0 ? motion : se3Exp(se3Log(motion) / frames);  // frames dropped between them: the mean
 }
 
-Eigen::Isometry3d MotionModel::predict(const FrameStamp& frame) const {
-  const double frames = framesToExtrapolate(frame);
-  if (frames == 1.0) return T_world_last_ * frameMotion();
-  return T_world_last_ * se3Exp(frames * se3Log(frameMotion()));
+Eigen::Isometry3d MotionModel::frameMotion() const {
+  if (poses_seen_ < 2) return Eigen::Isometry3d::Identity();
+  return perFrame(T_world_before_.inverse() * T_world_last_);
 }
+
+Eigen::Isometry3d MotionModel::extrapolate(const Eigen::Isometry3d& per_frame, const FrameStamp& frame) const {
+  const double frames = framesToExtrapolate(frame);
+  if (frames == 1.0) return T_world_last_ * per_frame;
+  return T_world_last_ * se3Exp(frames * se3Log(per_frame));
+}
+
+Eigen::Isometry3d MotionModel::predict(const FrameStamp& frame) const { return extrapolate(frameMotion(), frame); }
 
 Eigen::Isometry3d MotionModel::predictAtTrackedVelocity(const FrameStamp& frame) const {
   if (poses_seen_ < 2) return T_world_last_;
-  const Eigen::Isometry3d tracked = T_world_before_.inverse() * last_window_correction_.inverse() * T_world_last_;
-  const double between = framesBetween(before_stamp_, last_stamp_), frames = framesToExtrapolate(frame);
-  const Eigen::Isometry3d per_frame = between == 1.0 ? tracked : se3Exp(se3Log(tracked) / between);
-  return frames == 1.0 ? T_world_last_ * per_frame : T_world_last_ * se3Exp(frames * se3Log(per_frame));
+  return extrapolate(perFrame(T_world_before_.inverse() * last_window_correction_.inverse() * T_world_last_), frame);
 }
 
 Vector6d MotionModel::drivingMotion(std::size_t newest) const {
