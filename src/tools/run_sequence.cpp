@@ -115,8 +115,7 @@ class ReplayedSegmenter {
       if (segmenting_) carrier_.setClassMap(segmenting_time_, segmenting_map_);
       segmenting_ = true;
       segmenting_time_ = time;
-      segmenting_map_ = *evidence;
-      segmenting_map_.values = evidence->values.clone();
+      segmenting_map_ = *evidence;  // each frame reads into new matrices: no copy needed
       segmenting_frame_ = frame;
     }
     double age = 0.0;

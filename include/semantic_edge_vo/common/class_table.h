@@ -38,9 +38,4 @@ class ClassTable {
   std::vector<SemanticClass> classes_;
 };
 
-/// The mask with every class of a table of `classes` entries: an edge of unknown class.
-inline std::uint32_t everyClassMask(std::size_t classes) {
-  return classes >= static_cast<std::size_t>(ClassTable::kMaxClasses) ? ~0u : (1u << classes) - 1u;
-}
-
 }  // namespace semantic_edge_vo
