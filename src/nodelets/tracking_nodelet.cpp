@@ -41,6 +41,9 @@ class TrackingNodelet : public nodelet::Nodelet {
     ParameterLoader loader(parameters);
     loader.load("use_edges", &use_edges_);
     std::string error = loadTfOptions(&loader, &tf_);
+    LiveMappingOptions live_mapping;
+    if (error.empty()) error = loadLiveMappingOptions(&loader, &live_mapping);
+    if (error.empty()) parseMappingMode(live_mapping.mapping_mode, &mapping_mode_);
     if (error.empty()) error = loadOdometryOptions(&loader, &options_);
     tracer_.init(node, &loader, getName());
     NODELET_INFO_STREAM("parameters:" << loader.summary());
@@ -106,7 +109,7 @@ class TrackingNodelet : public nodelet::Nodelet {
       if (odometry_)
         for (const FramePose& pose : odometry_->flush()) publishPose(pose);
       camera_ = camera;
-      odometry_ = std::make_unique<Odometry>(options_, camera_);
+      odometry_ = std::make_unique<Odometry>(options_, camera_, mapping_mode_);
       stamps_.clear();
       frame_count_ = 0;
     }
@@ -127,12 +130,8 @@ class TrackingNodelet : public nodelet::Nodelet {
     // A frame without a pose yet (it waits for the initialisation) still gets its status now.
     if (std::none_of(poses.begin(), poses.end(), [&](const FramePose& p) { return p.index == odometry_frame->index; }))
       publishStatus(frame->header, frame->class_map_age, nullptr);
-    bool new_keyframe = false;
-    for (const FramePose& pose : poses) {
-      publishPose(pose);
-      new_keyframe |= pose.keyframe;
-    }
-    if (new_keyframe) publishKeyframes(frame->header.stamp);
+    for (const FramePose& pose : poses) publishPose(pose);
+    for (const auto& window : odometry_->takeNewWindows()) publishKeyframes(*window, frame->header.stamp);
     while (!stamps_.empty() && stamps_.begin()->first < frame_count_ - 100) stamps_.erase(stamps_.begin());
   }
 
@@ -204,11 +203,11 @@ class TrackingNodelet : public nodelet::Nodelet {
   }
 
   /// The keyframe window with the points whose depth is measured, for the Mapping nodelet.
-  void publishKeyframes(const ros::Time& stamp) {
+  void publishKeyframes(const KeyframeWindow& window, const ros::Time& stamp) {
     auto map = boost::make_shared<KeyframeMap>();
     map->header.stamp = stamp;
     map->header.frame_id = "world";
-    for (const auto& keyframe : odometry_->keyframes()) {
+    for (const auto& keyframe : window.keyframes) {
       MapKeyframe message;
       message.id = static_cast<std::uint32_t>(keyframe->id);
       const auto header = stamps_.find(keyframe->frame->index);
@@ -248,6 +247,7 @@ class TrackingNodelet : public nodelet::Nodelet {
   TfOptions tf_;
   bool use_edges_ = true;  ///< false: photometric-only odometry (the ablation's "none")
   OdometryOptions options_;
+  MappingMode mapping_mode_ = MappingMode::kDeterministic;
 
   std::unique_ptr<InputRejections> rejections_;
   std::unique_ptr<CameraExtrinsic> extrinsic_;

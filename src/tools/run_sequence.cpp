@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <sstream>
+#include <thread>
 
 #include "semantic_edge_vo/common/class_table.h"
 #include "semantic_edge_vo/support/command_line.h"
@@ -25,10 +27,12 @@ namespace {
 
 struct Arguments {
   std::string sequence, output, field, intake, segmenter_model, config;  ///< field, intake: empty = config's
-  std::string frames_text, latency_text;
+  std::string frames_text, latency_text, rate_text;
   int frames = 0;  ///< 0: all
   int class_map_latency = 0;  ///< 0: every frame has its own class map
+  double rate = 0.0;          ///< frames a second at most (a camera's rate); 0: as fast as it can
   bool quiet = false;
+  bool parallel = false;  ///< mapping on its own thread (the live default) instead of after each frame
 };
 
 std::string parse(int argc, char** argv, Arguments* args) {
@@ -36,13 +40,15 @@ std::string parse(int argc, char** argv, Arguments* args) {
                                        {{"--sequence", &args->sequence}, {"--output", &args->output}, {"--field", &args->field},
                                         {"--intake", &args->intake}, {"--segmenter-model", &args->segmenter_model},
                                         {"--config", &args->config}, {"--frames", &args->frames_text},
-                                        {"--class-map-latency", &args->latency_text}},
-                                       {{"--quiet", &args->quiet}});
+                                        {"--class-map-latency", &args->latency_text}, {"--rate", &args->rate_text}},
+                                       {{"--quiet", &args->quiet}, {"--parallel", &args->parallel}});
   if (!error.empty()) return error;
   if (const std::string bad = parseNumber("--frames", args->frames_text, &args->frames); !bad.empty()) return bad;
   if (args->frames < 0) return "--frames takes a count >= 0 (0: all)";
   if (const std::string bad = parseNumber("--class-map-latency", args->latency_text, &args->class_map_latency); !bad.empty()) return bad;
   if (args->class_map_latency < 0) return "--class-map-latency takes a frame count >= 0";
+  if (const std::string bad = parseNumber("--rate", args->rate_text, &args->rate); !bad.empty()) return bad;
+  if (args->rate < 0.0) return "--rate takes frames a second >= 0 (0: as fast as it can)";
   if (args->sequence.empty() || args->output.empty()) return "--sequence DIR and --output OUT are required";
   return {};
 }
@@ -72,19 +78,23 @@ std::string applyFlags(const Arguments& args, GraphConfig* options) {
 
 const char* const kUsage = R"(usage: run_sequence --sequence DIR --output OUT [--field snnf|onnf|annf|none]
            [--intake canny|fused|semantic_edges] [--segmenter-model PATH] [--config FILE] [--frames N]
-           [--class-map-latency N] [--quiet]
-Runs the odometry offline, deterministically, on a KITTI odometry folder (image_0/, calib.txt,
-times.txt) or a synthetic sequence. --config reads a file laid out like config/semantic_edge_vo.yaml
+           [--class-map-latency N] [--parallel] [--rate HZ] [--quiet]
+Runs the odometry offline on a KITTI odometry folder (image_0/, calib.txt, times.txt) or a synthetic
+sequence, frames as fast as it can, deterministically: mapping runs after each frame (the
+config's tracking/mapping_mode is the live graph's). --parallel runs mapping on its own thread, as
+the live graph does by default: tracking never waits for it, and the trajectory depends on timing.
+--rate HZ feeds the frames no faster than HZ a second, as a camera would (the time waiting is not
+counted in the figures). --config reads a file laid out like config/semantic_edge_vo.yaml
 (the nodelets' parameters; a key no option reads is an error); the flags override it; without it
 every option has its default, which the shipped config equals. Writes OUT/poses_kitti.txt
 (one line per input frame, camera-to-world of camera 0, frame 0 at identity), OUT/poses_tum.txt,
 OUT/timing.txt (per frame and stage, ms), OUT/parameters.txt (every option used) and prints a summary.
 On a synthetic sequence with true depths (DIR/depth/) it also checks every keyframe's point depths
-against them: OUT/keyframe_depths.txt and a summary line.
+against them (not with --parallel): OUT/keyframe_depths.txt and a summary line.
 --class-map-latency N replays a live segmenter N frames slower than the camera (fused and
 semantic_edges intakes): only every Nth frame's class map is made, each is ready N frames later, and
 every frame uses the newest ready map carried to it by the optical flow (as the EdgeIntake nodelet
-does with class_maps: newest); frames before the first map get Canny edges with every class.
+does with class_maps: newest); frames before the first map get Canny edges of no class.
 timing.txt's class_map_age column gives each frame's map age in frames (-1: none).
 )";
 
@@ -97,6 +107,7 @@ struct RunRecord {
   double odometry_s = 0.0;      ///< of the odometry alone (tracking + mapping; live, the intake has its own nodelet)
   double odometry_cpu_s = 0.0;  ///< CPU time of all threads during the odometry: what the code costs, whatever the host
   double stolen_share = -1.0;   ///< of the host's CPU time the hypervisor took during the run (< 0: unknown)
+  int mapping_dropped = 0;      ///< frames the parallel mapping dropped from its full queue
 };
 
 /// A live segmenter `latency` frames slower than the camera, replayed: it segments frame 0, is done
@@ -139,18 +150,28 @@ class ReplayedSegmenter {
 
 /// Runs the odometry over the first `frames` frames; `depth_report` (synthetic sequences) checks
 /// every keyframe's depths. Returns the error that stopped the run, empty when it ran through.
-std::string runFrames(const GraphConfig& options, SequenceInput& input, int frames, int class_map_latency, bool quiet,
+std::string runFrames(const GraphConfig& options, SequenceInput& input, int frames, const Arguments& args, MappingMode mapping,
                       std::optional<KeyframeDepthReport>* depth_report, RunRecord* record) {
+  const int class_map_latency = args.class_map_latency;
   ReplayedSegmenter segmenter(options.frame.intake.mode == IntakeMode::kCanny ? 0 : class_map_latency, options.intake_stream.class_carry);
   const FrameBuilder builder(options.frame, input.camera(), options.classes.names());
-  Odometry odometry(options.odometry, input.camera());
+  Odometry odometry(options.odometry, input.camera(), mapping);
+  // In parallel mode a frame's pose is returned before mapping decides whether it becomes a keyframe.
+  std::set<int> keyframe_frames;
+  const auto takeKeyframes = [&odometry, &keyframe_frames] {
+    for (const auto& window : odometry.takeNewWindows()) keyframe_frames.insert(window->frame_index);
+  };
   record->intake_ms.assign(static_cast<std::size_t>(frames), 0.0);
   record->segmenter_ms.assign(static_cast<std::size_t>(frames), 0.0);
   record->class_map_age.assign(static_cast<std::size_t>(frames), 0);
-  ProgressBar progress(frames, !quiet);
+  ProgressBar progress(frames, !args.quiet);
   HostCpuTimes host_before, host_after;
   const bool host_known = readHostCpuTimes(&host_before);
+  const auto first_frame_at = std::chrono::steady_clock::now();
   for (int i = 0; i < frames; ++i) {
+    if (args.rate > 0.0)
+      std::this_thread::sleep_until(first_frame_at + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                         std::chrono::duration<double>(i / args.rate)));
     cv::Mat gray;
     ClassEvidence evidence;
     if (const std::string error = input.read(static_cast<std::size_t>(i), &gray, &evidence); !error.empty())
@@ -165,13 +186,18 @@ std::string runFrames(const GraphConfig& options, SequenceInput& input, int fram
     const auto odometry_start = std::chrono::steady_clock::now();
     const double odometry_cpu_start = processCpuSeconds();
     for (FramePose& pose : odometry.process(frame)) record->poses.push_back(pose);
+    takeKeyframes();
     record->odometry_cpu_s += processCpuSeconds() - odometry_cpu_start;
     record->odometry_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - odometry_start).count();
     record->processing_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (*depth_report) stopOnError((*depth_report)->update(odometry.keyframes()), depth_report);
     progress.update(i + 1);
   }
+  odometry.finishMapping();
+  takeKeyframes();
   for (FramePose& pose : odometry.flush()) record->poses.push_back(pose);
+  for (FramePose& pose : record->poses) pose.keyframe = keyframe_frames.count(pose.index) > 0;
+  record->mapping_dropped = odometry.mappingDropped();
   if (host_known && readHostCpuTimes(&host_after)) record->stolen_share = stolenShare(host_before, host_after);
   if (*depth_report) (*depth_report)->finish();
   std::sort(record->poses.begin(), record->poses.end(), [](const FramePose& a, const FramePose& b) { return a.index < b.index; });
@@ -211,7 +237,7 @@ std::string writeOutputs(const std::string& output, const RunRecord& record, con
   return "";
 }
 
-void printSummary(int frames, const RunRecord& record, const RunCounts& counts, bool deferred_window) {
+void printSummary(int frames, const RunRecord& record, const RunCounts& counts, MappingMode mapping) {
   // Median of a stage over the frames (or only those where it ran).
   const auto stage = [&](double FramePose::*ms, bool ran_only) {
     std::vector<double> values;
@@ -220,11 +246,13 @@ void printSummary(int frames, const RunRecord& record, const RunCounts& counts, 
     return values.empty() ? 0.0 : median(values);
   };
   std::printf("run_sequence: %d frames, %d with a trusted pose, %d untrusted, %d lost, "
-              "%d keyframes; median per frame %.1f ms (intake %.1f, tracking %.1f, mapping %.1f); windowed optimisation "
-              "%.1f ms each, %s\n",
+              "%d keyframes; median per frame %.1f ms (intake %.1f, tracking %.1f, mapping %.1f)",
               frames, counts.trusted, counts.untrusted, counts.lost, counts.keyframes, median(counts.totals), median(record.intake_ms),
-              stage(&FramePose::tracking_ms, false), stage(&FramePose::mapping_ms, false), stage(&FramePose::window_ms, true),
-              deferred_window ? "on its own thread (not in the total)" : "in line (in mapping)");
+              stage(&FramePose::tracking_ms, false), stage(&FramePose::mapping_ms, false));
+  if (mapping == MappingMode::kParallel)
+    std::printf("; mapping on its own thread (not in the total), %d frames dropped from its queue\n", record.mapping_dropped);
+  else
+    std::printf("; windowed optimisation %.1f ms each (in mapping)\n", stage(&FramePose::window_ms, true));
   std::printf("run_sequence: throughput %.1f frames/s (wall time of intake + odometry over all frames, %.1f s; "
               "files not counted); odometry alone (tracking + mapping) %.1f frames/s\n",
               frames / std::max(record.processing_s, 1e-9), record.processing_s, frames / std::max(record.odometry_s, 1e-9));
@@ -260,17 +288,19 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(args.output);
   const int frames = args.frames > 0 ? std::min<int>(args.frames, static_cast<int>(input.size())) : static_cast<int>(input.size());
   const std::string field_name = frame_options.use_field ? toString(frame_options.field.kind) : "none";
-  std::printf("run_sequence: %s, %d frames, %dx%d, intake %s, field %s, window optimisation %s%s%s\n", args.sequence.c_str(),
-              frames, input.camera().width, input.camera().height, toString(frame_options.intake.mode),
-              field_name.c_str(), options.odometry.optimize_window ? "on" : "off", args.config.empty() ? "" : ", config ",
-              args.config.c_str());
+  std::printf("run_sequence: %s, %d frames, %dx%d, intake %s, field %s, window optimisation %s, mapping %s%s%s\n",
+              args.sequence.c_str(), frames, input.camera().width, input.camera().height, toString(frame_options.intake.mode),
+              field_name.c_str(), options.odometry.optimize_window ? "on" : "off", args.parallel ? "parallel" : "deterministic",
+              args.config.empty() ? "" : ", config ", args.config.c_str());
   // Synthetic sequences carry their true depths: check every keyframe's point depths against them.
   const std::string depth_folder = args.sequence + "/depth";
+  // (Deterministic mapping only: the check reads the mapper's keyframes between frames.)
+  const MappingMode mapping = args.parallel ? MappingMode::kParallel : MappingMode::kDeterministic;
   std::optional<KeyframeDepthReport> depth_report;
-  if (std::filesystem::is_directory(depth_folder)) depth_report.emplace(depth_folder);
+  if (std::filesystem::is_directory(depth_folder) && mapping == MappingMode::kDeterministic) depth_report.emplace(depth_folder);
   RunRecord record;
   RunCounts counts;
-  error = runFrames(options, input, frames, args.class_map_latency, args.quiet, &depth_report, &record);
+  error = runFrames(options, input, frames, args, mapping, &depth_report, &record);
   if (!error.empty()) {
     std::fprintf(stderr, "\nrun_sequence: %s\n", error.c_str());
     return 1;
@@ -283,7 +313,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "run_sequence: %s\n", error.c_str());
     return 1;
   }
-  printSummary(frames, record, counts, options.odometry.window_delay > 0);
+  printSummary(frames, record, counts, mapping);
   if (depth_report) std::printf("run_sequence: keyframe depths against the sequence's true depths: %s\n", depth_report->summary().c_str());
   std::printf("run_sequence: wrote %s/poses_kitti.txt, poses_tum.txt, timing.txt, parameters.txt%s\n", args.output.c_str(),
               depth_report ? ", keyframe_depths.txt" : "");

@@ -6,6 +6,7 @@
 // on the map it had, also when the first second of its start never reaches the odometry (dropped
 // frames) or a van blocks the view while it stands. Frames dropped from the stream are counted from
 // the stamps; a loss it never recovers from predicts on for 5 s, then stands.
+#include <algorithm>
 #include <cstdio>
 #include <map>
 
@@ -69,7 +70,7 @@ Blinding blindingOf(Event event, int first_standing) {
 /// Runs the odometry over the city drive (Canny edges, SNNF); from frame kEvent one or more images
 /// are replaced by a uniform gray one, or the odometry is restarted before it; or the car stops on
 /// its way (and may be blinded while standing).
-DriveResult drive(Event event) {
+DriveResult drive(Event event, MappingMode mapping = MappingMode::kDeterministic) {
   synthetic::SyntheticSequenceOptions options = synthetic::SyntheticSequenceOptions::forScene(synthetic::SceneType::kCity, 1);
   const bool stop = event == Event::kStop || event == Event::kStopThenFramesDropped || event == Event::kStopWhileBlinded;
   if (stop) {
@@ -79,7 +80,7 @@ DriveResult drive(Event event) {
   synthetic::SyntheticSequence sequence(options);
   const FrameBuilder builder(FrameBuilderOptions{}, sequence.camera(), ClassTable::cityscapes().names());
   OdometryOptions odometry_options;  // the defaults: the shipped config
-  Odometry odometry(odometry_options, sequence.camera());
+  Odometry odometry(odometry_options, sequence.camera(), mapping);
   DriveResult run;
   // As in the tracking nodelet, the odometry numbers the frames it receives: dropped frames are seen
   // in the stamps only. drive_index maps its numbers back to the drive's frames.
@@ -90,6 +91,11 @@ DriveResult drive(Event event) {
       EXPECT_EQ(run.poses.count(i), 0u) << "frame " << i << " got a second pose";
       run.poses[i] = pose;
     }
+  };
+  // Keyframes as the windows tell them (parallel mapping decides after the pose was returned).
+  std::vector<int> keyframe_frames;
+  const auto keepKeyframes = [&] {
+    for (const auto& window : odometry.takeNewWindows()) keyframe_frames.push_back(drive_index.at(static_cast<std::size_t>(window->frame_index)));
   };
   const int frames = stop || event == Event::kBlindedForGood ? kStopFrames : kFrames;
   int last_standing = -1, first_standing = -1;
@@ -112,8 +118,16 @@ DriveResult drive(Event event) {
     drive_index.push_back(i);
     EXPECT_FALSE(error) << error.reason;
     keep(odometry.process(odometry_frame));
+    keepKeyframes();
   }
+  odometry.finishMapping();
+  keepKeyframes();
   keep(odometry.flush());
+  for (auto& [index, pose] : run.poses) {
+    const bool made = std::find(keyframe_frames.begin(), keyframe_frames.end(), index) != keyframe_frames.end();
+    if (mapping == MappingMode::kDeterministic) EXPECT_EQ(made, pose.keyframe) << "frame " << index << ": the windows and the poses agree";
+    pose.keyframe = made;
+  }
   return run;
 }
 
@@ -147,6 +161,12 @@ void expectContinuousAcross(const DriveResult& run, const char* what, int event 
   EXPECT_LT(after_error, tolerance * after_distance) << "odom must continue where it was, at the scale it had";
 }
 
+/// Parallel mapping tracks against keyframes that arrive a frame or two late, with fewer depth
+/// measurements (measured on a lightly loaded machine: 0.8 % after a blinded frame, 1.0 % after a
+/// repeated one or a restart, against 0.8, 0.4 and 1.2 % in deterministic mode); a loaded machine
+/// delays them more.
+double continuityTolerance(MappingMode mapping) { return mapping == MappingMode::kParallel ? 0.04 : 0.02; }
+
 /// Every frame but the blinded ones is trusted, those are lost; the first after them is tracked
 /// again on the map it had.
 void expectLostOnlyWhileBlinded(const DriveResult& run, int blinded_from, int blinded_frames) {
@@ -163,18 +183,20 @@ void expectLostOnlyWhileBlinded(const DriveResult& run, int blinded_from, int bl
   EXPECT_EQ(after.keyframe_id, before.keyframe_id) << "tracked on the map it had";
 }
 
-TEST(Odometry, ABlindedFrameIsLostThenTrackingResumesWithOdomContinuous) {
-  const DriveResult run = drive(Event::kBlindedFrame);
+void expectLostOnlyAtTheBlindedFrame(MappingMode mapping) {
+  const DriveResult run = drive(Event::kBlindedFrame, mapping);
   ASSERT_EQ(run.poses.size(), static_cast<std::size_t>(kFrames)) << "every frame gets a pose";
   EXPECT_EQ(run.poses.at(kEvent).state, OdometryState::kLost);
   expectLostOnlyWhileBlinded(run, kEvent, 1);
-  expectContinuousAcross(run, "a blinded frame");
+  expectContinuousAcross(run, "a blinded frame", kEvent, continuityTolerance(mapping));
 }
+
+TEST(Odometry, ABlindedFrameIsLostThenTrackingResumesWithOdomContinuous) { expectLostOnlyAtTheBlindedFrame(MappingMode::kDeterministic); }
 
 /// The frame at kEvent shows another moment of the drive: it is not trusted and makes no keyframe;
 /// the next frame is tracked on the map as before, odom continuous.
-void expectTheWrongFrameIsNotTrusted(Event event, const char* what) {
-  const DriveResult run = drive(event);
+void expectTheWrongFrameIsNotTrusted(Event event, const char* what, MappingMode mapping = MappingMode::kDeterministic) {
+  const DriveResult run = drive(event, mapping);
   ASSERT_EQ(run.poses.size(), static_cast<std::size_t>(kFrames)) << "every frame gets a pose";
   const FramePose& wrong = run.poses.at(kEvent);
   std::printf("odometry, %s: state %s, motion %.2f of the usual travel away from the prediction\n", what, toString(wrong.state),
@@ -183,8 +205,9 @@ void expectTheWrongFrameIsNotTrusted(Event event, const char* what) {
   EXPECT_FALSE(wrong.keyframe);
   for (int i = 0; i < kFrames; ++i)
     if (i != kEvent) EXPECT_TRUE(run.poses.at(i).trusted) << "frame " << i;
-  EXPECT_EQ(run.poses.at(kEvent + 1).keyframe_id, run.poses.at(kEvent - 1).keyframe_id) << "tracked on against the keyframe before";
-  expectContinuousAcross(run, what);
+  if (mapping == MappingMode::kDeterministic)  // (parallel mapping may hand tracking a new keyframe at any frame)
+    EXPECT_EQ(run.poses.at(kEvent + 1).keyframe_id, run.poses.at(kEvent - 1).keyframe_id) << "tracked on against the keyframe before";
+  expectContinuousAcross(run, what, kEvent, continuityTolerance(mapping));
 }
 
 TEST(Odometry, ARepeatedFrameIsNotTrustedAndMakesNoKeyframe) {
@@ -195,14 +218,16 @@ TEST(Odometry, AFrameThirtyFramesAheadIsNotTrustedAndMakesNoKeyframe) {
   expectTheWrongFrameIsNotTrusted(Event::kFrameFromLater, "a frame from 30 frames later");
 }
 
-TEST(Odometry, ARestartStartsANewMapWhereTheOldOneWas) {
-  const DriveResult run = drive(Event::kRestart);
+void expectANewMapWhereTheOldOneWas(MappingMode mapping) {
+  const DriveResult run = drive(Event::kRestart, mapping);
   ASSERT_EQ(run.poses.size(), static_cast<std::size_t>(kFrames)) << "every frame gets a pose";
   for (int i = 0; i < kFrames; ++i) EXPECT_TRUE(run.poses.at(i).trusted) << "frame " << i;
   EXPECT_TRUE(run.poses.at(kEvent).recovered) << "the frame after the restart starts the new map";
   EXPECT_TRUE(run.poses.at(kEvent).keyframe);
-  expectContinuousAcross(run, "a restart");
+  expectContinuousAcross(run, "a restart", kEvent, continuityTolerance(mapping));
 }
+
+TEST(Odometry, ARestartStartsANewMapWhereTheOldOneWas) { expectANewMapWhereTheOldOneWas(MappingMode::kDeterministic); }
 
 /// Frames of the car at rest (the camera still bounces a few millimetres).
 std::vector<int> standingFrames(const DriveResult& run) {
@@ -302,6 +327,35 @@ TEST(Odometry, PredictionsWhileLostEndFiftyFramesAfterTheLastTrustedPose) {
   EXPECT_NEAR((position(end) - position(last_trusted)).norm(), kDeadReckoning * step, 0.05 * kDeadReckoning * step)
       << "constant velocity up to the bound";
   for (int i = end + 1; i < kStopFrames; ++i) EXPECT_LT((position(i) - position(end)).norm(), 1e-9) << "frame " << i;
+}
+
+// The same with mapping on its own thread (the live default): tracking hands each trusted frame over
+// and tracks against the newest keyframe mapping made, without waiting for it.
+TEST(ParallelMapping, ABlindedFrameIsLostThenTrackingResumesWithOdomContinuous) {
+  expectLostOnlyAtTheBlindedFrame(MappingMode::kParallel);
+}
+
+TEST(ParallelMapping, ARepeatedFrameIsNotTrustedAndMakesNoKeyframe) {
+  expectTheWrongFrameIsNotTrusted(Event::kRepeatedFrame, "a frame repeated, parallel mapping", MappingMode::kParallel);
+}
+
+TEST(ParallelMapping, ARestartStartsANewMapWhereTheOldOneWas) { expectANewMapWhereTheOldOneWas(MappingMode::kParallel); }
+
+TEST(ParallelMapping, TheOdometryStopsWhileMappingIsBusy) {
+  // Destroyed right after the frames that make keyframes (a bag played again, shutdown): the
+  // mapping thread finishes the request it is on and stops; nothing hangs or crashes.
+  synthetic::SyntheticSequence sequence(synthetic::SyntheticSequenceOptions::forScene(synthetic::SceneType::kCity, 1));
+  const FrameBuilder builder(FrameBuilderOptions{}, sequence.camera(), ClassTable::cityscapes().names());
+  for (int frames : {20, 26, 32}) {
+    Odometry odometry(OdometryOptions{}, sequence.camera(), MappingMode::kParallel);
+    int trusted = 0;
+    for (int i = 0; i < frames; ++i) {
+      ExtractionError error;
+      for (const FramePose& pose : odometry.process(builder.build(i, sequence.frame(i).time, sequence.frame(i).gray, ClassEvidence{}, &error)))
+        trusted += pose.trusted;
+    }
+    EXPECT_GT(trusted, 0) << frames << " frames";
+  }
 }
 
 }  // namespace

@@ -20,6 +20,7 @@ struct GraphConfig {
   ClassTable classes = ClassTable::cityscapes();
   IntakeStreamOptions intake_stream;
   TfOptions tf;
+  LiveMappingOptions live_mapping;
   MapOutputOptions map_output;
   SegmenterOutputOptions segmenter_output;
   std::string summary;                             ///< every option with its value, "(default)" where not set

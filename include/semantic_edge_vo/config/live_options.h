@@ -45,6 +45,15 @@ struct TfOptions {
   std::string validate() const;
 };
 
+/// How the Tracking nodelet runs the odometry's mapping half.
+struct LiveMappingOptions {
+  /// deterministic: after each frame, the trajectory run_sequence gives | parallel: on its own
+  /// thread, tracking never waits (not yet as accurate: docs/evaluation.md)
+  std::string mapping_mode = "deterministic";
+
+  std::string validate() const;
+};
+
 /// The Mapping nodelet's map and path.
 struct MapOutputOptions {
   FrameNames frames;
@@ -74,6 +83,7 @@ struct SegmenterOutputOptions {
 // Loaders under the nodelets' parameter names; each returns the validation error.
 std::string loadIntakeStreamOptions(ParameterLoader* loader, IntakeStreamOptions* options);
 std::string loadTfOptions(ParameterLoader* loader, TfOptions* options);
+std::string loadLiveMappingOptions(ParameterLoader* loader, LiveMappingOptions* options);
 std::string loadMapOutputOptions(ParameterLoader* loader, MapOutputOptions* options);
 std::string loadSegmenterOutputOptions(ParameterLoader* loader, SegmenterOutputOptions* options);
 

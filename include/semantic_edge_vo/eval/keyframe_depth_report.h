@@ -16,8 +16,6 @@ namespace semantic_edge_vo {
 ///    by the initialisation: after the initialisation's frames refined it);
 ///  - "retired": when the next keyframe is made (or at the end of the run): after the depth filter's
 ///    updates from the frames tracked against it and the windowed optimisations run so far.
-/// With a deferred window (window_delay > 0) the odometry triangulates the active keyframe again when
-/// the window is merged, so its "new" row describes the first triangulation only.
 class KeyframeDepthReport {
  public:
   explicit KeyframeDepthReport(std::string depth_folder, double tolerance = kDepthCheckTolerance)

@@ -1,5 +1,5 @@
-// Odometry: the frame loop (track, check, recover) and its state; initialisation and keyframes are
-// in odometry_initialization.cpp and odometry_keyframes.cpp.
+// Odometry: the frame loop (track, check, recover, hand over to mapping) and its state;
+// initialisation is in odometry_initialization.cpp, mapping in mapper.cpp.
 #include "semantic_edge_vo/backend/odometry.h"
 
 #include <algorithm>
@@ -44,21 +44,27 @@ std::string OdometryOptions::validate() const {
     error = "keyframe_flow must be > 0 px and keyframe_min_in_view in [0, 1]";
   if (error.empty() && (keyframe_max_interval < 1 || window_size < 1 || !(depth_neighbour_radius > 0)))
     error = "keyframe_max_interval and window_size must be >= 1, depth_neighbour_radius > 0 px";
-  if (error.empty() && window_delay < 0) error = "window_delay must be >= 0 frames";
+  if (error.empty() && mapping_queue < 1) error = "mapping_queue must be >= 1 frame";
   if (error.empty() && !(keyframe_min_parallax >= 0)) error = "keyframe_min_parallax must be >= 0 px";
   return error;
 }
 
-Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera)
+const char* toString(MappingMode mode) { return mode == MappingMode::kParallel ? "parallel" : "deterministic"; }
+
+bool parseMappingMode(const std::string& text, MappingMode* mode) {
+  if (text != "deterministic" && text != "parallel") return false;
+  *mode = text == "parallel" ? MappingMode::kParallel : MappingMode::kDeterministic;
+  return true;
+}
+
+Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera, MappingMode mapping)
     : options_(options),
       camera_(camera),
       tracker_(options.tracker),
-      depths_(options.epipolar, camera, options.depth_neighbour_radius, 1.0 / options.initializer.median_depth),
-      window_optimizer_(options.window_optimizer),
-      deferred_window_(window_optimizer_),
       initializer_(options.initializer, camera),
-      keyframe_motion_(options.keyframe_motion, camera),
-      class_reliability_(options.class_reliability) {}
+      mapper_(options, camera) {
+  if (mapping == MappingMode::kParallel) mapping_thread_ = std::make_unique<MappingThread>(&mapper_, options.mapping_queue);
+}
 
 std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFrame>& frame) {
   if (state_ != OdometryState::kTracking) {
@@ -67,15 +73,44 @@ std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFra
     if (relocalizing_ && relocalize(frame, &poses)) return poses;
     return initialize(frame, start);
   }
-  FramePose merged;
-  if (deferred_window_.running() && frame->index >= merge_window_at_) {
-    mergeWindow(&merged);
-    tracker_.setKeyframe(active_);  // its pose and depths may have moved
+  collectMapping();
+  return {track(frame)};
+}
+
+void Odometry::collectMapping() {
+  if (!mapping_thread_) return;
+  const MappingOutcome* newest = nullptr;
+  const std::vector<MappingOutcome> outcomes = mapping_thread_->takeOutcomes();
+  for (const MappingOutcome& outcome : outcomes) {
+    if (outcome.stale) continue;
+    newest = &outcome;
+    if (outcome.keyframe) new_windows_.push_back(outcome.window);
   }
-  FramePose pose = track(frame);
-  pose.window_ms += merged.window_ms;
-  pose.mapping_ms += merged.mapping_ms;
-  return {pose};
+  if (!newest) return;
+  // The recent poses were tracked against the keyframe where tracking had it; the window may have
+  // moved it since: they move with it (odom jumps once by this correction).
+  const auto moved = newest->keyframe_poses.find(keyframe_->id);
+  if (moved != newest->keyframe_poses.end()) motion_.correct(moved->second * keyframe_->T_world_cam.inverse());
+  trackAgainst(newest->active);
+}
+
+void Odometry::settleMapping() {
+  if (!mapping_thread_) return;
+  mapping_thread_->waitUntilIdle();
+  collectMapping();
+}
+
+void Odometry::finishMapping() { settleMapping(); }
+
+std::vector<std::shared_ptr<const KeyframeWindow>> Odometry::takeNewWindows() {
+  std::vector<std::shared_ptr<const KeyframeWindow>> windows;
+  windows.swap(new_windows_);
+  return windows;
+}
+
+void Odometry::trackAgainst(std::shared_ptr<const Keyframe> keyframe) {
+  keyframe_ = std::move(keyframe);
+  tracker_.setKeyframe(keyframe_);
 }
 
 void Odometry::restart() {
@@ -114,7 +149,7 @@ std::vector<Eigen::Isometry3d> Odometry::guesses(const Keyframe& keyframe, const
 bool Odometry::relocalize(const std::shared_ptr<const OdometryFrame>& frame, std::vector<FramePose>* poses) {
   const auto start = std::chrono::steady_clock::now();
   const TrackingResult result =
-      tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*active_, *frame), last_inlier_ratio_, edgeLayersOf(*frame));
+      tracker_.track(*frame->pyramid, frame->fieldOrNull(), guesses(*keyframe_, *frame), last_inlier_ratio_, edgeLayersOf(*frame));
   // Only a map that explains the frame about as well as it did the frames before the loss: a loss
   // of the view (an occlusion, a flash) finds it again; a map gone wrong (traffic close by made the
   // loss, and it explains the next frame just above min_inlier_ratio) is initialised anew.
@@ -134,7 +169,7 @@ bool Odometry::relocalize(const std::shared_ptr<const OdometryFrame>& frame, std
 
 FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<Eigen::Isometry3d> initial = guesses(*active_, *frame);
+  const std::vector<Eigen::Isometry3d> initial = guesses(*keyframe_, *frame);
   TrackingResult result = tracker_.track(*frame->pyramid, frame->fieldOrNull(), initial, last_inlier_ratio_, edgeLayersOf(*frame));
   double motion_deviation = 0.0;
   const bool consistent = !result.ok || retrackUnlessConsistent(*frame, initial.front(), &result, &motion_deviation);
@@ -145,7 +180,7 @@ FramePose Odometry::track(const std::shared_ptr<const OdometryFrame>& frame) {
 
 FrameAgreement Odometry::agreementOf(const OdometryFrame& frame, const TrackingResult& result) const {
   const Eigen::Isometry3d T_last_world = motion_.lastPose().inverse();
-  const Eigen::Vector3d travel = (T_last_world * active_->T_world_cam * result.T_cam_kf.inverse()).translation();
+  const Eigen::Vector3d travel = (T_last_world * keyframe_->T_world_cam * result.T_cam_kf.inverse()).translation();
   const Eigen::Vector3d predicted = (T_last_world * motion_.predictAtTrackedVelocity(stampOf(frame))).translation();
   const double usual_travel = motion_.drivingMotion().head<3>().norm() * motion_.framesBetween(motion_.lastStamp(), stampOf(frame));
   const double usual_ratio = median({recent_inlier_ratios_.begin(), recent_inlier_ratios_.end()});
@@ -185,7 +220,7 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   FramePose pose;
   pose.index = frame->index;
   pose.time = frame->time;
-  pose.keyframe_id = active_->id;
+  pose.keyframe_id = keyframe_->id;
   pose.tracking = result;
   pose.tracking_ms = tracking_ms;
   if (result.ok && !consistent) return untrustedPose(*frame, pose);
@@ -201,26 +236,31 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
     remember(pose);
     return pose;
   }
-  pose.T_world_cam = orthonormalized(active_->T_world_cam * pose.tracking.T_cam_kf.inverse());
+  pose.T_world_cam = orthonormalized(keyframe_->T_world_cam * pose.tracking.T_cam_kf.inverse());
   pose.trusted = true;
   pose.state = OdometryState::kTracking;
-  const auto mapping_start = std::chrono::steady_clock::now();
-  std::shared_ptr<const SharedClassEdgeTest> frame_edges = refineDepths(*frame, pose.tracking.T_cam_kf);
-  followCorners(*frame);
-  if (frame->has_field && frame->classes_known) class_reliability_.observe(*active_, pose.tracking.T_cam_kf, frame->field);
-  ++frames_since_keyframe_;
-  const bool few_in_view = pose.tracking.points_in_view < options_.keyframe_min_in_view * pose.tracking.points;
-  // The interval only while the camera travels: standing, a keyframe would measure no depth.
-  const bool interval = frames_since_keyframe_ >= options_.keyframe_max_interval &&
-                        travelParallax(*active_, pose.tracking.T_cam_kf) >= options_.keyframe_min_parallax;
-  if (pose.tracking.mean_flow > options_.keyframe_flow || few_in_view || interval) {
-    if (!makeKeyframe(frame, std::move(frame_edges), &pose)) {
-      pose.mapping_ms = elapsedMs(mapping_start);
-      return untrustedPose(*frame, pose);
-    }
-    pose.keyframe = true;
+  MappingRequest request;
+  request.frame = frame;
+  request.keyframe_id = keyframe_->id;
+  request.tracking = pose.tracking;
+  if (mapping_thread_) {
+    mapping_thread_->post(std::move(request));
+    remember(pose);
+    return pose;
   }
-  pose.mapping_ms = elapsedMs(mapping_start);
+  const MappingOutcome outcome = mapper_.map(request);
+  pose.mapping_ms = outcome.mapping_ms;
+  pose.window_ms = outcome.window_ms;
+  pose.keyframe_scale = outcome.keyframe_scale;
+  trackAgainst(outcome.active);
+  // A keyframe refused for its scale: the frame's pose is not to be trusted either.
+  if (outcome.refused) return untrustedPose(*frame, pose);
+  if (outcome.keyframe) {
+    pose.keyframe = true;
+    pose.T_world_cam = outcome.T_world_cam;
+    pose.window_correction = outcome.window_correction;
+    new_windows_.push_back(outcome.window);
+  }
   remember(pose);
   return pose;
 }
@@ -236,28 +276,6 @@ FramePose Odometry::untrustedPose(const OdometryFrame& frame, FramePose pose) {
   }
   remember(pose);
   return pose;
-}
-
-double Odometry::travelParallax(const Keyframe& keyframe, const Eigen::Isometry3d& T_frame_kf) const {
-  std::vector<double> flows;
-  for (const MapPoint& point : keyframe.points) {
-    if (!point.hasDepth()) continue;
-    const Eigen::Vector3d p = camera_.backProject(point.u, point.v, 1.0 / point.inverse_depth);
-    const Eigen::Vector3d rotated = T_frame_kf.linear() * p, moved = rotated + T_frame_kf.translation();
-    if (rotated.z() <= 1e-3 || moved.z() <= 1e-3) continue;
-    flows.push_back((camera_.project(moved) - camera_.project(rotated)).norm());
-  }
-  return median(flows);
-}
-
-void Odometry::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {
-  active_ = std::move(keyframe);
-  tracker_.setKeyframe(active_);
-  if (keyframe_motion_.enabled()) keyframe_motion_.start(active_->id, active_->frame->index, gray8(*active_->frame));
-}
-
-void Odometry::followCorners(const OdometryFrame& frame) {
-  if (keyframe_motion_.enabled()) keyframe_motion_.follow(frame.index, gray8(frame));
 }
 
 void Odometry::remember(const FramePose& pose) {

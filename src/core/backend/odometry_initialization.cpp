@@ -46,11 +46,11 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
   }
   const auto keyframe_start = std::chrono::steady_clock::now();
   Eigen::Isometry3d T_last_first;
-  const std::shared_ptr<const Keyframe> keyframe = makeFirstKeyframe(&T_last_first);
-  return posesOfWaitingFrames(*keyframe, T_last_first, elapsedMs(keyframe_start));
+  makeFirstKeyframe(&T_last_first);
+  return posesOfWaitingFrames(T_last_first, elapsedMs(keyframe_start));
 }
 
-std::shared_ptr<const Keyframe> Odometry::makeFirstKeyframe(Eigen::Isometry3d* T_last_first_out) {
+void Odometry::makeFirstKeyframe(Eigen::Isometry3d* T_last_first_out) {
   // The first waiting frame becomes the first keyframe, anchored where the odometry predicts it
   // (identity at the very start), so that odom stays continuous after a loss.
   Eigen::Isometry3d T_last_first = initializer_.T_last_first();
@@ -66,43 +66,28 @@ std::shared_ptr<const Keyframe> Odometry::makeFirstKeyframe(Eigen::Isometry3d* T
   T_last_first.translation() *= depth_scale;
   const Eigen::Isometry3d T_world_first = motion_.predict(stampOf(*waiting_.front().frame));
 
-  auto keyframe = std::make_shared<Keyframe>();
-  keyframe->id = next_keyframe_id_++;
-  keyframe->T_world_cam = T_world_first;
-  keyframe->frame = waiting_.front().frame;
-  takeCandidates(keyframe.get());
-  const std::vector<double>& inverse_depths = initializer_.inverseDepths();
-  for (std::size_t i = 0; i < keyframe->points.size(); ++i) {
-    if (!(inverse_depths[i] > 0.0)) continue;
-    MapPoint& point = keyframe->points[i];
-    point.inverse_depth = inverse_depths[i] / depth_scale;
-    point.inverse_depth_variance = std::pow(0.1 * point.inverse_depth, 2);
-    point.observations = 1;
-  }
-  std::vector<DepthSample> samples;
-  for (const MapPoint& point : keyframe->points)
-    if (point.hasDepth()) samples.push_back({Eigen::Vector2d(point.u, point.v), point.inverse_depth});
-  depths_.propagate(samples, &keyframe->points);
-  keyframes_.push_back(keyframe);
-  setActiveKeyframe(keyframe);
-
+  std::vector<double> inverse_depths = initializer_.inverseDepths();
+  for (double& inverse_depth : inverse_depths) inverse_depth /= depth_scale;
+  // The mapper is used here, on the caller's thread: the mapping thread finishes the old map first.
+  settleMapping();
+  trackAgainst(mapper_.startMap(waiting_.front().frame, T_world_first, inverse_depths));
   *T_last_first_out = T_last_first;
-  return keyframe;
 }
 
-std::vector<FramePose> Odometry::posesOfWaitingFrames(const Keyframe& keyframe, const Eigen::Isometry3d& T_last_first,
-                                                      double keyframe_ms) {
-  const Eigen::Isometry3d& T_world_first = keyframe.T_world_cam;
+std::vector<FramePose> Odometry::posesOfWaitingFrames(const Eigen::Isometry3d& T_last_first, double keyframe_ms) {
+  const std::shared_ptr<const Keyframe> keyframe = keyframe_;  // tracking moves on to its refined copies
+  const int keyframe_id = keyframe->id;
+  const Eigen::Isometry3d& T_world_first = keyframe->T_world_cam;
   std::vector<FramePose> poses;
   FramePose first;
-  first.index = keyframe.frame->index;
-  first.time = keyframe.frame->time;
+  first.index = keyframe->frame->index;
+  first.time = keyframe->frame->time;
   first.T_world_cam = T_world_first;
   first.trusted = true;
   first.state = OdometryState::kTracking;
   first.recovered = recovering_;
   first.keyframe = true;
-  first.keyframe_id = keyframe.id;
+  first.keyframe_id = keyframe_id;
   first.tracking_ms = waiting_.front().ms;
   first.mapping_ms = keyframe_ms;
   poses.push_back(first);
@@ -119,22 +104,27 @@ std::vector<FramePose> Odometry::posesOfWaitingFrames(const Keyframe& keyframe, 
     pose.T_world_cam = orthonormalized(T_world_first * result.T_cam_kf.inverse());
     pose.trusted = result.ok;
     pose.state = result.ok ? OdometryState::kTracking : OdometryState::kLost;
-    pose.keyframe_id = keyframe.id;
+    pose.keyframe_id = keyframe_id;
     pose.tracking = result;
     pose.tracking_ms = waiting_[j].ms + elapsedMs(frame_start);
-    const auto mapping_start = std::chrono::steady_clock::now();
     if (result.ok) {
-      refineDepths(frame_j, result.T_cam_kf);
-      followCorners(frame_j);
+      // In line in both modes: each waiting frame is tracked against the depths the ones before refined.
+      MappingRequest request;
+      request.frame = waiting_[j].frame;
+      request.keyframe_id = keyframe_id;
+      request.tracking = result;
+      request.waited_for_initialization = true;
+      const MappingOutcome outcome = mapper_.map(request);
+      pose.mapping_ms = outcome.mapping_ms;
+      trackAgainst(outcome.active);
     }
-    pose.mapping_ms = elapsedMs(mapping_start);
     poses.push_back(pose);
     remember(pose);
   }
+  new_windows_.push_back(mapper_.window(first.index));
   waiting_.clear();
   state_ = OdometryState::kTracking;
   recovering_ = relocalizing_ = false;
-  frames_since_keyframe_ = static_cast<int>(n) - 1;
   return poses;
 }
 

@@ -45,6 +45,7 @@ std::string loadGraphConfig(const std::string& path, GraphConfig* config) {
                                   loadClassTable(&segmenter_loader, &segmenter_classes),
                                   loadFieldOptions(&field_loader, &config->frame.field),
                                   loadTfOptions(&tracking_loader, &config->tf),
+                                  loadLiveMappingOptions(&tracking_loader, &config->live_mapping),
                                   loadOdometryOptions(&tracking_loader, &config->odometry),
                                   loadMapOutputOptions(&mapping_loader, &config->map_output),
                                   loadClassTable(&mapping_loader, &mapping_classes)});

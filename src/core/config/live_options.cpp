@@ -25,6 +25,12 @@ std::string FrameNames::validate() const {
 
 std::string TfOptions::validate() const { return frames.validate(); }
 
+std::string LiveMappingOptions::validate() const {
+  if (mapping_mode != "parallel" && mapping_mode != "deterministic")
+    return "mapping_mode must be parallel or deterministic (got '" + mapping_mode + "')";
+  return "";
+}
+
 std::string MapOutputOptions::validate() const {
   if (const std::string error = frames.validate(); !error.empty()) return error;
   if (queue_size < 1 || max_map_points < 1 || max_path_poses < 1) return "queue_size, max_map_points and max_path_poses must be >= 1";
@@ -72,6 +78,11 @@ std::string loadTfOptions(ParameterLoader* loader, TfOptions* options) {
   loadFrameNames(loader, &options->frames);
   loader->load("publish_tf", &options->publish_tf);
   loader->load("publish_default_camera_tf", &options->publish_default_camera_tf);
+  return options->validate();
+}
+
+std::string loadLiveMappingOptions(ParameterLoader* loader, LiveMappingOptions* options) {
+  loader->load("mapping_mode", &options->mapping_mode, "(parallel | deterministic)");
   return options->validate();
 }
 

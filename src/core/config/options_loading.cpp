@@ -53,7 +53,7 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("keyframe_min_parallax", &options->keyframe_min_parallax, "px");
   loader->load("window_size", &options->window_size, "keyframes");
   loader->load("optimize_window", &options->optimize_window);
-  loader->load("window_delay", &options->window_delay, "frames (0: in line)");
+  loader->load("mapping_queue", &options->mapping_queue, "frames (parallel mapping)");
   WindowOptimizerOptions& window = options->window_optimizer;
   loader->load("window_optimizer/keyframes", &window.keyframes, "keyframes");
   loader->load("window_optimizer/max_iterations", &window.max_iterations, "iterations");

@@ -1,0 +1,119 @@
+#pragma once
+#include <deque>
+#include <functional>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "semantic_edge_vo/backend/keyframe.h"
+#include "semantic_edge_vo/backend/keyframe_depths.h"
+#include "semantic_edge_vo/backend/odometry_options.h"
+
+namespace semantic_edge_vo {
+
+/// A frame tracked and trusted, handed from tracking to mapping.
+struct MappingRequest {
+  std::shared_ptr<const OdometryFrame> frame;
+  int keyframe_id = -1;  ///< the keyframe it was tracked against (tracking.T_cam_kf is relative to it)
+  TrackingResult tracking;
+  /// A frame that waited for the initialisation: it refines the first keyframe's depths and follows
+  /// its corners; class reliability and keyframe decisions start after these frames.
+  bool waited_for_initialization = false;
+};
+
+/// The keyframes of the window as they were when a keyframe was made: copies, never changed again.
+struct KeyframeWindow {
+  int frame_index = -1;  ///< the frame the newest keyframe was made from
+  std::vector<std::shared_ptr<const Keyframe>> keyframes;  ///< oldest first
+};
+
+/// What mapping did with one request.
+struct MappingOutcome {
+  int frame_index = -1;
+  /// The request was tracked against a keyframe that has left the window (parallel mode: mapping
+  /// made new ones meanwhile); nothing was done.
+  bool stale = false;
+  /// The active keyframe after the request (its depths refined; a new keyframe when one was made),
+  /// a copy tracking may use while mapping goes on.
+  std::shared_ptr<const Keyframe> active;
+  bool keyframe = false;  ///< the frame became a keyframe
+  /// `active` is a new keyframe whose window has not run yet: its pose and points as tracked
+  /// (parallel mapping hands it to tracking at once; the settled one follows with keyframe set).
+  bool provisional = false;
+  bool refused = false;   ///< it was to become one, but its depths disagreed with the map's scale
+  double keyframe_scale = 1.0;  ///< the scale of its points against the map's (1: no keyframe attempted)
+  /// The frame's pose once the window settled it (a keyframe's; else where the window has the
+  /// keyframe it was tracked against) and how the window moved it (identity without a keyframe).
+  Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d window_correction = Eigen::Isometry3d::Identity();
+  /// The window's keyframe poses afterwards, by id: where tracking's keyframes are now.
+  std::map<int, Eigen::Isometry3d> keyframe_poses;
+  std::shared_ptr<const KeyframeWindow> window;  ///< the window after a new keyframe (else null)
+  double mapping_ms = 0.0;  ///< all of it, the windowed optimisation included
+  double window_ms = 0.0;   ///< the windowed optimisation
+};
+
+/// The mapping half of the odometry, ROS-free and single-threaded (the caller picks the thread,
+/// MappingThread): the active keyframe's depths refined by each tracked frame (epipolar search and
+/// filter), corners followed for the keyframes' measured motion, the drive's class reliability,
+/// keyframe decisions, new keyframes with their points triangulated, and the windowed optimisation.
+class Mapper {
+ public:
+  Mapper(const OdometryOptions& options, const PinholeCamera& camera);
+
+  /// A new map from the initialisation: `frame` at `T_world_cam` is its first keyframe, its
+  /// candidates' inverse depths `inverse_depths` (0: none; one per candidate). Returns it.
+  std::shared_ptr<const Keyframe> startMap(const std::shared_ptr<const OdometryFrame>& frame, const Eigen::Isometry3d& T_world_cam,
+                                           const std::vector<double>& inverse_depths);
+  /// Refines the active keyframe with a tracked frame, and makes the frame a keyframe when it
+  /// should be one (flow, points in view, interval with parallax) and its depths agree with the map.
+  MappingOutcome map(const MappingRequest& request);
+
+  /// A copy of the window, its newest keyframe made from frame `frame_index`.
+  std::shared_ptr<const KeyframeWindow> window(int frame_index) const;
+  /// Called (on the mapping thread) with each new keyframe before the windowed optimisation
+  /// settles it (outcome.provisional), its points triangulated from the tracked pose: tracking can
+  /// use it 100 ms sooner.
+  void onProvisionalKeyframe(std::function<void(MappingOutcome)> callback) { on_provisional_ = std::move(callback); }
+  /// The window (the mapper's own keyframes; read while mapping is idle).
+  const std::deque<std::shared_ptr<Keyframe>>& keyframes() const { return keyframes_; }
+
+ private:
+  /// The keyframe of the window with this id; null when it has left the window.
+  const Keyframe* keyframeWithId(int id) const;
+  std::map<int, Eigen::Isometry3d> keyframePoses() const;
+  bool wantsKeyframe(const MappingRequest& request) const;
+  /// Median flow of the active keyframe's measured points between where the frame's rotation alone
+  /// and its whole motion take them, px: the parallax a keyframe made from the frame would triangulate with.
+  double travelParallax(const Eigen::Isometry3d& T_frame_kf) const;
+  /// Makes the frame a keyframe when its points, triangulated from the tracked pose, agree with the
+  /// map's scale (FrameConsistencyOptions::max_keyframe_scale_change): it joins the window, the
+  /// windowed optimisation settles its pose (`outcome` gets it), then its points are triangulated
+  /// from there. It keeps `frame_edges` for the next keyframe's epipolar search. Refused
+  /// (outcome->refused) when the scale disagrees: nothing changed.
+  void makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d& T_world_cam,
+                    std::shared_ptr<const SharedClassEdgeTest> frame_edges, MappingOutcome* outcome);
+  /// The keyframe's points from its frame's candidates, their depths triangulated against the
+  /// previous keyframe (KeyframeDepths::triangulate, whose scale it returns).
+  double triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const;
+  /// The keyframe's points from its frame's candidates, each matched in the SNNF layers the drive's
+  /// class reliability gives its classes.
+  void takeCandidates(Keyframe* keyframe) const;
+  void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);
+
+  OdometryOptions options_;
+  PinholeCamera camera_;
+  KeyframeDepths depths_;  ///< of the keyframes' points
+  WindowOptimizer window_optimizer_;
+  KeyframeMotion keyframe_motion_;  ///< corners from the active keyframe
+  ClassReliability class_reliability_;
+  std::deque<std::shared_ptr<Keyframe>> keyframes_;
+  std::shared_ptr<Keyframe> active_;
+  int next_keyframe_id_ = 0;
+  int frames_since_keyframe_ = 0;
+  std::function<void(MappingOutcome)> on_provisional_;
+};
+
+}  // namespace semantic_edge_vo

@@ -1,0 +1,186 @@
+// Mapper: depths refined by each tracked frame, keyframe decisions, new keyframes and the window.
+#include "semantic_edge_vo/backend/mapper.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "odometry_detail.h"
+#include "semantic_edge_vo/common/robust_statistics.h"
+#include "semantic_edge_vo/common/se3.h"
+
+namespace semantic_edge_vo {
+
+using odometry_detail::elapsedMs;
+using odometry_detail::gray8;
+
+Mapper::Mapper(const OdometryOptions& options, const PinholeCamera& camera)
+    : options_(options),
+      camera_(camera),
+      depths_(options.epipolar, camera, options.depth_neighbour_radius, 1.0 / options.initializer.median_depth),
+      window_optimizer_(options.window_optimizer),
+      keyframe_motion_(options.keyframe_motion, camera),
+      class_reliability_(options.class_reliability) {}
+
+std::shared_ptr<const Keyframe> Mapper::startMap(const std::shared_ptr<const OdometryFrame>& frame, const Eigen::Isometry3d& T_world_cam,
+                                                 const std::vector<double>& inverse_depths) {
+  auto keyframe = std::make_shared<Keyframe>();
+  keyframe->id = next_keyframe_id_++;
+  keyframe->T_world_cam = T_world_cam;
+  keyframe->frame = frame;
+  takeCandidates(keyframe.get());
+  for (std::size_t i = 0; i < keyframe->points.size() && i < inverse_depths.size(); ++i) {
+    if (!(inverse_depths[i] > 0.0)) continue;
+    MapPoint& point = keyframe->points[i];
+    point.inverse_depth = inverse_depths[i];
+    point.inverse_depth_variance = std::pow(0.1 * point.inverse_depth, 2);
+    point.observations = 1;
+  }
+  std::vector<DepthSample> samples;
+  for (const MapPoint& point : keyframe->points)
+    if (point.hasDepth()) samples.push_back({Eigen::Vector2d(point.u, point.v), point.inverse_depth});
+  depths_.propagate(samples, &keyframe->points);
+  keyframes_.push_back(keyframe);
+  setActiveKeyframe(keyframe);
+  frames_since_keyframe_ = 0;
+  return std::make_shared<const Keyframe>(*active_);
+}
+
+MappingOutcome Mapper::map(const MappingRequest& request) {
+  const auto start = std::chrono::steady_clock::now();
+  MappingOutcome outcome;
+  outcome.frame_index = request.frame->index;
+  const Keyframe* tracked_against = active_ ? keyframeWithId(request.keyframe_id) : nullptr;
+  if (!tracked_against) {
+    outcome.stale = true;
+    return outcome;
+  }
+  // Where the window has the keyframe it was tracked against now, the frame is (parallel mapping:
+  // the window may have moved it since tracking took its copy).
+  outcome.T_world_cam = orthonormalized(tracked_against->T_world_cam * request.tracking.T_cam_kf.inverse());
+  const bool tracked_against_active = tracked_against == active_.get();
+  const Eigen::Isometry3d T_cam_kf =
+      tracked_against_active ? request.tracking.T_cam_kf : outcome.T_world_cam.inverse() * active_->T_world_cam;
+  const OdometryFrame& frame = *request.frame;
+  std::shared_ptr<const SharedClassEdgeTest> frame_edges = depths_.refine(active_.get(), frame, T_cam_kf);
+  if (keyframe_motion_.enabled()) keyframe_motion_.follow(frame.index, gray8(frame));
+  ++frames_since_keyframe_;
+  // A frame tracked against an older keyframe (parallel mapping made this one meanwhile) measures
+  // the new keyframe's depths too (they have a single observation so far), but its flow and points
+  // in view were another keyframe's: the decision waits for the frames tracked against this one.
+  if (tracked_against_active && !request.waited_for_initialization) {
+    if (frame.has_field && frame.classes_known) class_reliability_.observe(*active_, T_cam_kf, frame.field);
+    if (wantsKeyframe(request)) makeKeyframe(request, outcome.T_world_cam, std::move(frame_edges), &outcome);
+  }
+  outcome.active = std::make_shared<const Keyframe>(*active_);
+  outcome.keyframe_poses = keyframePoses();
+  outcome.mapping_ms = elapsedMs(start);
+  return outcome;
+}
+
+const Keyframe* Mapper::keyframeWithId(int id) const {
+  if (active_ && active_->id == id) return active_.get();
+  for (const auto& keyframe : keyframes_)
+    if (keyframe->id == id) return keyframe.get();
+  return nullptr;
+}
+
+std::map<int, Eigen::Isometry3d> Mapper::keyframePoses() const {
+  std::map<int, Eigen::Isometry3d> poses;
+  for (const auto& keyframe : keyframes_) poses[keyframe->id] = keyframe->T_world_cam;
+  if (active_) poses[active_->id] = active_->T_world_cam;
+  return poses;
+}
+
+bool Mapper::wantsKeyframe(const MappingRequest& request) const {
+  const TrackingResult& tracking = request.tracking;
+  const bool few_in_view = tracking.points_in_view < options_.keyframe_min_in_view * tracking.points;
+  // The interval only while the camera travels: standing, a keyframe would measure no depth.
+  const bool interval = frames_since_keyframe_ >= options_.keyframe_max_interval &&
+                        travelParallax(tracking.T_cam_kf) >= options_.keyframe_min_parallax;
+  return tracking.mean_flow > options_.keyframe_flow || few_in_view || interval;
+}
+
+double Mapper::travelParallax(const Eigen::Isometry3d& T_frame_kf) const {
+  std::vector<double> flows;
+  for (const MapPoint& point : active_->points) {
+    if (!point.hasDepth()) continue;
+    const Eigen::Vector3d p = camera_.backProject(point.u, point.v, 1.0 / point.inverse_depth);
+    const Eigen::Vector3d rotated = T_frame_kf.linear() * p, moved = rotated + T_frame_kf.translation();
+    if (rotated.z() <= 1e-3 || moved.z() <= 1e-3) continue;
+    flows.push_back((camera_.project(moved) - camera_.project(rotated)).norm());
+  }
+  return median(flows);
+}
+
+void Mapper::makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d& T_world_cam,
+                          std::shared_ptr<const SharedClassEdgeTest> frame_edges, MappingOutcome* outcome) {
+  auto keyframe = std::make_shared<Keyframe>();
+  keyframe->T_world_cam = T_world_cam;
+  keyframe->frame = request.frame;
+  // Its points triangulated from the tracked pose must see the map at the map's scale: a keyframe
+  // whose depths disagree with it by more than the bound would hand the next frames a new scale.
+  outcome->keyframe_scale = triangulatePoints(keyframe.get(), *active_);
+  if (std::abs(std::log(outcome->keyframe_scale)) > std::log1p(options_.consistency.max_keyframe_scale_change)) {
+    outcome->refused = true;
+    return;
+  }
+  keyframe->id = next_keyframe_id_++;
+  if (on_provisional_) {
+    MappingOutcome provisional;
+    provisional.frame_index = request.frame->index;
+    provisional.provisional = true;
+    provisional.active = std::make_shared<const Keyframe>(*keyframe);
+    provisional.T_world_cam = T_world_cam;
+    provisional.keyframe_poses = keyframePoses();
+    provisional.keyframe_poses[keyframe->id] = T_world_cam;
+    on_provisional_(std::move(provisional));
+  }
+  // Its points join once the window has settled its pose (below), not before: points triangulated
+  // from the tracked pose agree with its error and would pin it there (a yaw error leaves a
+  // left-right depth gradient that makes the next yaw error).
+  keyframe->points.clear();
+  keyframe->edge_test = std::move(frame_edges);
+  keyframe->measured_motion =
+      keyframe_motion_.measure(request.frame->index, (active_->T_world_cam.inverse() * keyframe->T_world_cam).linear());
+  reanchor(keyframe->measured_motion, options_.keyframe_motion, active_->T_world_cam, &keyframe->T_world_cam);
+  keyframes_.push_back(keyframe);
+  while (static_cast<int>(keyframes_.size()) > options_.window_size) keyframes_.pop_front();
+  if (options_.optimize_window) {
+    const auto start = std::chrono::steady_clock::now();
+    window_optimizer_.optimize(keyframes_);
+    outcome->window_ms = elapsedMs(start);
+  }
+  triangulatePoints(keyframe.get(), *active_);
+  setActiveKeyframe(keyframe);
+  frames_since_keyframe_ = 0;
+  outcome->keyframe = true;
+  outcome->window_correction = keyframe->T_world_cam * T_world_cam.inverse();
+  outcome->T_world_cam = keyframe->T_world_cam;
+  outcome->window = window(request.frame->index);
+}
+
+double Mapper::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const {
+  takeCandidates(keyframe);
+  return depths_.triangulate(keyframe, previous);
+}
+
+void Mapper::takeCandidates(Keyframe* keyframe) const {
+  keyframe->points = keyframe->frame->candidates;
+  const int all_edges_layer = keyframe->frame->has_field ? keyframe->frame->field.all_edges_layer : -1;
+  for (MapPoint& point : keyframe->points)
+    if (point.isEdge()) point.field_layers = class_reliability_.fieldLayers(point.class_mask, all_edges_layer);
+}
+
+void Mapper::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {
+  active_ = std::move(keyframe);
+  if (keyframe_motion_.enabled()) keyframe_motion_.start(active_->id, active_->frame->index, gray8(*active_->frame));
+}
+
+std::shared_ptr<const KeyframeWindow> Mapper::window(int frame_index) const {
+  auto window = std::make_shared<KeyframeWindow>();
+  window->frame_index = frame_index;
+  for (const auto& keyframe : keyframes_) window->keyframes.push_back(std::make_shared<const Keyframe>(*keyframe));
+  return window;
+}
+
+}  // namespace semantic_edge_vo
