@@ -114,8 +114,6 @@ class Odometry {
   /// Parallel mode: takes what mapping made since the last frame (the newest keyframe to track
   /// against; a new keyframe's window correction moves the recent poses).
   void collectMapping();
-  /// Waits for the mapping thread to be idle and collects it (before the mapper is used here).
-  void settleMapping();
   void trackAgainst(std::shared_ptr<const Keyframe> keyframe);
   /// Initial guesses for the frame, from the last pose and the frame intervals since it.
   std::vector<Eigen::Isometry3d> guesses(const Keyframe& keyframe, const OdometryFrame& frame) const;

@@ -94,13 +94,11 @@ void Odometry::collectMapping() {
   trackAgainst(newest->active);
 }
 
-void Odometry::settleMapping() {
+void Odometry::finishMapping() {
   if (!mapping_thread_) return;
   mapping_thread_->waitUntilIdle();
   collectMapping();
 }
-
-void Odometry::finishMapping() { settleMapping(); }
 
 std::vector<std::shared_ptr<const KeyframeWindow>> Odometry::takeNewWindows() {
   std::vector<std::shared_ptr<const KeyframeWindow>> windows;

@@ -69,7 +69,7 @@ void Odometry::makeFirstKeyframe(Eigen::Isometry3d* T_last_first_out) {
   std::vector<double> inverse_depths = initializer_.inverseDepths();
   for (double& inverse_depth : inverse_depths) inverse_depth /= depth_scale;
   // The mapper is used here, on the caller's thread: the mapping thread finishes the old map first.
-  settleMapping();
+  finishMapping();
   trackAgainst(mapper_.startMap(waiting_.front().frame, T_world_first, inverse_depths));
   *T_last_first_out = T_last_first;
 }
