@@ -341,6 +341,40 @@ TEST(ParallelMapping, ARepeatedFrameIsNotTrustedAndMakesNoKeyframe) {
 
 TEST(ParallelMapping, ARestartStartsANewMapWhereTheOldOneWas) { expectANewMapWhereTheOldOneWas(MappingMode::kParallel); }
 
+TEST(ParallelMapping, TheFrameAfterOneThatAskedForAKeyframeIsTrackedAgainstIt) {
+  // Frames come faster than mapping makes keyframes (no camera rate here): without waiting, the
+  // frames after one whose flow asked for a keyframe would be tracked farther and farther from the
+  // old keyframe.
+  synthetic::SyntheticSequence sequence(synthetic::SyntheticSequenceOptions::forScene(synthetic::SceneType::kCity, 1));
+  const FrameBuilder builder(FrameBuilderOptions{}, sequence.camera(), ClassTable::cityscapes().names());
+  OdometryOptions options;
+  options.keyframe_flow = 15.0;  // px: most keyframes of this short drive by their flow
+  // A slow window: mapping is still on the last keyframe when the next one is asked for.
+  options.window_optimizer.max_iterations = 30;
+  options.window_optimizer.point_stride = 1;
+  Odometry odometry(options, sequence.camera(), MappingMode::kParallel);
+  std::map<int, FramePose> poses;
+  std::map<int, int> keyframe_id_of_frame;
+  for (int i = 0; i < 60; ++i) {
+    ExtractionError error;
+    for (const FramePose& pose : odometry.process(builder.build(i, sequence.frame(i).time, sequence.frame(i).gray, ClassEvidence{}, &error)))
+      poses[pose.index] = pose;
+    for (const auto& window : odometry.takeNewWindows()) keyframe_id_of_frame[window->frame_index] = window->keyframes.back()->id;
+  }
+  odometry.finishMapping();
+  for (const auto& window : odometry.takeNewWindows()) keyframe_id_of_frame[window->frame_index] = window->keyframes.back()->id;
+  int checked = 0;
+  for (const auto& [frame, keyframe_id] : keyframe_id_of_frame) {
+    const auto asked = poses.find(frame), next = poses.find(frame + 1);
+    if (asked == poses.end() || next == poses.end() || !asked->second.trusted || !next->second.trusted) continue;
+    if (!(asked->second.tracking.mean_flow > options.keyframe_flow)) continue;
+    EXPECT_GE(next->second.keyframe_id, keyframe_id) << "frame " << frame + 1 << " after keyframe " << keyframe_id << " (frame " << frame << ")";
+    ++checked;
+  }
+  std::printf("parallel mapping: %d keyframes asked for by their flow, each tracked against by the next frame\n", checked);
+  EXPECT_GE(checked, 5);
+}
+
 TEST(ParallelMapping, TheOdometryStopsWhileMappingIsBusy) {
   // Destroyed right after the frames that make keyframes (a bag played again, shutdown): the
   // mapping thread finishes the request it is on and stops; nothing hangs or crashes.

@@ -113,6 +113,9 @@ class Mapper {
   std::shared_ptr<Keyframe> active_;
   int next_keyframe_id_ = 0;
   int frames_since_keyframe_ = 0;
+  int keyframes_left_ = 0;  ///< keyframes that have left the window
+  /// The allocator gives its free pages back to the system each time this many more have left it.
+  static constexpr int kKeyframesBetweenTrims = 20;
   std::function<void(MappingOutcome)> on_provisional_;
 };
 

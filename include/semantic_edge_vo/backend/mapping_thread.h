@@ -30,6 +30,9 @@ class MappingThread {
   std::vector<MappingOutcome> takeOutcomes();
   /// Waits until the queue is empty and no request is being mapped (the caller may then use the mapper).
   void waitUntilIdle();
+  /// Waits until mapping has an outcome for this frame or a later one (a new keyframe's provisional
+  /// outcome counts), or has gone idle (the request was dropped).
+  void waitForFrame(int frame_index);
   /// Requests dropped from a full queue so far.
   int dropped() const;
 
@@ -39,12 +42,13 @@ class MappingThread {
   Mapper* mapper_;
   std::size_t capacity_;
   mutable std::mutex mutex_;
-  std::condition_variable wake_, idle_;
+  std::condition_variable wake_, idle_, mapped_;
   std::deque<MappingRequest> queue_;
   std::vector<MappingOutcome> outcomes_;
   std::string error_;
   bool busy_ = false, stop_ = false;
   int dropped_ = 0;
+  int mapped_up_to_ = -1;  ///< the newest frame with an outcome
   std::thread thread_;  ///< started once the rest is constructed
 };
 

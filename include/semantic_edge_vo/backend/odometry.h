@@ -146,6 +146,8 @@ class Odometry {
   static constexpr std::size_t kRecentInlierRatios = 10;
   double last_inlier_ratio_ = 1.0;  ///< photometric inlier ratio of the last tracked frame (1: none)
   int untrusted_in_a_row_ = 0;      ///< frames tracked but not trusted since the last trusted one
+  /// Parallel mode: the last frame whose flow asked for a new keyframe, until mapping made it (-1: none).
+  int keyframe_asked_by_ = -1;
 };
 
 }  // namespace semantic_edge_vo

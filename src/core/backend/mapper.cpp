@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "odometry_detail.h"
+#include "semantic_edge_vo/common/freed_memory.h"
 #include "semantic_edge_vo/common/robust_statistics.h"
 #include "semantic_edge_vo/common/se3.h"
 
@@ -144,7 +145,10 @@ void Mapper::makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d
       keyframe_motion_.measure(request.frame->index, (active_->T_world_cam.inverse() * keyframe->T_world_cam).linear());
   reanchor(keyframe->measured_motion, options_.keyframe_motion, active_->T_world_cam, &keyframe->T_world_cam);
   keyframes_.push_back(keyframe);
-  while (static_cast<int>(keyframes_.size()) > options_.window_size) keyframes_.pop_front();
+  while (static_cast<int>(keyframes_.size()) > options_.window_size) {
+    keyframes_.pop_front();
+    if (++keyframes_left_ % kKeyframesBetweenTrims == 0) releaseFreedMemory();  // frames freed between bursts
+  }
   if (options_.optimize_window) {
     const auto start = std::chrono::steady_clock::now();
     window_optimizer_.optimize(keyframes_);

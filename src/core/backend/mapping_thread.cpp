@@ -1,5 +1,6 @@
 #include "semantic_edge_vo/backend/mapping_thread.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace semantic_edge_vo {
@@ -7,8 +8,12 @@ namespace semantic_edge_vo {
 MappingThread::MappingThread(Mapper* mapper, std::size_t queue_size)
     : mapper_(mapper), capacity_(queue_size < 1 ? 1 : queue_size) {
   mapper_->onProvisionalKeyframe([this](MappingOutcome outcome) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    outcomes_.push_back(std::move(outcome));
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      mapped_up_to_ = std::max(mapped_up_to_, outcome.frame_index);
+      outcomes_.push_back(std::move(outcome));
+    }
+    mapped_.notify_all();
   });
   thread_ = std::thread([this] { run(); });
 }
@@ -48,6 +53,11 @@ std::vector<MappingOutcome> MappingThread::takeOutcomes() {
   return outcomes;
 }
 
+void MappingThread::waitForFrame(int frame_index) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  mapped_.wait(lock, [this, frame_index] { return mapped_up_to_ >= frame_index || (queue_.empty() && !busy_); });
+}
+
 void MappingThread::waitUntilIdle() {
   std::unique_lock<std::mutex> lock(mutex_);
   idle_.wait(lock, [this] { return queue_.empty() && !busy_; });
@@ -76,8 +86,10 @@ void MappingThread::run() {
     }
     lock.lock();
     busy_ = false;
+    mapped_up_to_ = std::max(mapped_up_to_, request.frame->index);
     if (error.empty()) outcomes_.push_back(std::move(outcome));
     else error_ = error;
+    mapped_.notify_all();
     if (queue_.empty()) idle_.notify_all();
   }
 }

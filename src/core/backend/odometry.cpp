@@ -73,24 +73,40 @@ std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFra
     if (relocalizing_ && relocalize(frame, &poses)) return poses;
     return initialize(frame, start);
   }
+  // The frame before asked for a keyframe: the next ones would be tracked farther and farther from
+  // the old one (in a turn, hundreds of px). Tracking waits for it as it waits in deterministic
+  // mode, but only until its points are triangulated (the provisional keyframe), not for the window.
+  const auto start = std::chrono::steady_clock::now();
+  if (mapping_thread_ && keyframe_asked_by_ >= 0) mapping_thread_->waitForFrame(keyframe_asked_by_);
+  keyframe_asked_by_ = -1;
   collectMapping();
-  return {track(frame)};
+  const double waited_ms = elapsedMs(start);
+  FramePose pose = track(frame);
+  pose.tracking_ms += waited_ms;
+  return {pose};
 }
 
 void Odometry::collectMapping() {
   if (!mapping_thread_) return;
+  // The newest pose was tracked against keyframe_, where tracking had it; it moves as the window
+  // has moved that keyframe since, or, when the frame itself became a keyframe, as the window moved it.
+  int anchor_id = keyframe_ ? keyframe_->id : -1;
+  Eigen::Isometry3d anchor_pose = keyframe_ ? keyframe_->T_world_cam : Eigen::Isometry3d::Identity();
   const MappingOutcome* newest = nullptr;
   const std::vector<MappingOutcome> outcomes = mapping_thread_->takeOutcomes();
   for (const MappingOutcome& outcome : outcomes) {
     if (outcome.stale) continue;
     newest = &outcome;
     if (outcome.keyframe) new_windows_.push_back(outcome.window);
+    if (outcome.provisional && outcome.frame_index == motion_.lastStamp().index) {
+      anchor_id = outcome.active->id;
+      anchor_pose = motion_.lastPose();
+    }
   }
   if (!newest) return;
-  // The recent poses were tracked against the keyframe where tracking had it; the window may have
-  // moved it since: they move with it (odom jumps once by this correction).
-  const auto moved = newest->keyframe_poses.find(keyframe_->id);
-  if (moved != newest->keyframe_poses.end()) motion_.correct(moved->second * keyframe_->T_world_cam.inverse());
+  // Odom jumps once by this correction (docs/architecture.md); the velocity is kept.
+  const auto moved = newest->keyframe_poses.find(anchor_id);
+  if (moved != newest->keyframe_poses.end()) motion_.correct(moved->second * anchor_pose.inverse());
   trackAgainst(newest->active);
 }
 
@@ -113,6 +129,7 @@ void Odometry::trackAgainst(std::shared_ptr<const Keyframe> keyframe) {
 
 void Odometry::restart() {
   relocalizing_ = false;  // a new map was asked for
+  keyframe_asked_by_ = -1;
   if (state_ != OdometryState::kTracking) return;
   state_ = OdometryState::kInitializing;
   recovering_ = true;
@@ -242,6 +259,7 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   request.keyframe_id = keyframe_->id;
   request.tracking = pose.tracking;
   if (mapping_thread_) {
+    if (pose.tracking.mean_flow > options_.keyframe_flow) keyframe_asked_by_ = frame->index;
     mapping_thread_->post(std::move(request));
     remember(pose);
     return pose;

@@ -4,6 +4,7 @@
 
 #include "odometry_detail.h"
 #include "semantic_edge_vo/backend/odometry.h"
+#include "semantic_edge_vo/common/freed_memory.h"
 
 namespace semantic_edge_vo {
 
@@ -123,6 +124,7 @@ std::vector<FramePose> Odometry::posesOfWaitingFrames(const Eigen::Isometry3d& T
   }
   new_windows_.push_back(mapper_.window(first.index));
   waiting_.clear();
+  releaseFreedMemory();  // the burst: the frames that waited
   state_ = OdometryState::kTracking;
   recovering_ = relocalizing_ = false;
   return poses;
