@@ -3,8 +3,6 @@
 // goes, then that at frame 1000 against that at the last frame: the map and every queue must stay
 // bounded however long the car drives.
 //   benchmark_memory [--scene city|village|highway] [--frames N] [--seed S] [--parallel] [--report-every N]
-#include <malloc.h>
-
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -12,6 +10,7 @@
 
 #include "semantic_edge_vo/backend/odometry.h"
 #include "semantic_edge_vo/common/class_table.h"
+#include "semantic_edge_vo/common/freed_memory.h"
 #include "semantic_edge_vo/frontend/odometry_frame.h"
 #include "semantic_edge_vo/support/command_line.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
@@ -44,7 +43,7 @@ double residentMiB() {
 /// Resident memory once the allocator has given back the free pages it keeps for reuse (in every
 /// thread's arena), MiB: what the code holds.
 double trimmedResidentMiB() {
-  malloc_trim(0);
+  releaseFreedMemory();
   return residentMiB();
 }
 

@@ -355,14 +355,17 @@ TEST(ParallelMapping, TheFrameAfterOneThatAskedForAKeyframeIsTrackedAgainstIt) {
   Odometry odometry(options, sequence.camera(), MappingMode::kParallel);
   std::map<int, FramePose> poses;
   std::map<int, int> keyframe_id_of_frame;
+  const auto takeKeyframes = [&] {
+    for (const auto& window : odometry.takeNewWindows()) keyframe_id_of_frame[window->frame_index] = window->keyframes.back()->id;
+  };
   for (int i = 0; i < 60; ++i) {
     ExtractionError error;
     for (const FramePose& pose : odometry.process(builder.build(i, sequence.frame(i).time, sequence.frame(i).gray, ClassEvidence{}, &error)))
       poses[pose.index] = pose;
-    for (const auto& window : odometry.takeNewWindows()) keyframe_id_of_frame[window->frame_index] = window->keyframes.back()->id;
+    takeKeyframes();
   }
   odometry.finishMapping();
-  for (const auto& window : odometry.takeNewWindows()) keyframe_id_of_frame[window->frame_index] = window->keyframes.back()->id;
+  takeKeyframes();
   int checked = 0;
   for (const auto& [frame, keyframe_id] : keyframe_id_of_frame) {
     const auto asked = poses.find(frame), next = poses.find(frame + 1);
