@@ -1,25 +1,35 @@
-// Mapping: KeyframeMap and TrackedFrame from Tracking -> the semantic edge map (PointCloud2, voxel
-// filtered and bounded: keyframes leaving the window are committed to it) and nav_msgs/Path.
-// Work happens in an owned thread behind a bounded queue; callbacks only enqueue.
+// Mapping: the odometry's backend and the maps it makes.
+//  - The core MappingThread (keyframes, depth filtering of new points, the windowed optimisation)
+//    answers the Tracking nodelet's requests on its own thread: mapping_request -> mapping_outcome,
+//    shared pointers inside one manager. A request of a new session (a new odometry) starts a new mapper.
+//  - A worker thread behind a bounded queue builds, from each window mapping makes, the KeyframeMap
+//    and the semantic edge map (PointCloud2, voxel filtered and bounded: keyframes leaving the
+//    window are committed to it), and from TrackedFrame the nav_msgs/Path.
 #include <array>
 #include <condition_variable>
 #include <deque>
+#include <map>
 #include <thread>
 #include <unordered_map>
 
+#include <boost/make_shared.hpp>
 #include <nav_msgs/Path.h>
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
+#include <ros/callback_queue.h>
+#include <ros/spinner.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/point_cloud2_iterator.h>
 
 #include "semantic_edge_vo/KeyframeMap.h"
 #include "semantic_edge_vo/TrackedFrame.h"
+#include "semantic_edge_vo/backend/mapping_thread.h"
 #include "semantic_edge_vo/common/class_table.h"
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
 #include "semantic_edge_vo/config/live_options.h"
+#include "semantic_edge_vo/ros/mapping_messages.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
 #include "semantic_edge_vo/config/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
@@ -30,6 +40,13 @@ namespace semantic_edge_vo {
 class MappingNodelet : public nodelet::Nodelet {
  public:
   ~MappingNodelet() override {
+    // Requests first (they may start a mapper), then the mapper (it hands windows to the worker).
+    if (request_spinner_) request_spinner_->stop();
+    request_subscriber_.shutdown();
+    {
+      std::lock_guard<std::mutex> lock(session_mutex_);
+      mapping_.reset();
+    }
     {
       std::lock_guard<std::mutex> lock(queue_mutex_);
       stopping_ = true;
@@ -39,9 +56,17 @@ class MappingNodelet : public nodelet::Nodelet {
   }
 
  private:
+  /// A window mapping made, with what the KeyframeMap needs beside it.
+  struct WindowJob {
+    std::shared_ptr<const KeyframeWindow> window;
+    ros::Time stamp;                       ///< of the frame whose request made it
+    std::vector<ros::Time> keyframe_stamps;  ///< one per keyframe of the window
+    PinholeCamera camera;
+    std::vector<std::string> class_names;
+  };
   struct Job {
     TrackedFrameConstPtr tracked;  ///< one of the two is set
-    KeyframeMapConstPtr map;
+    std::shared_ptr<const WindowJob> window;
   };
   struct MapPointOut {
     Eigen::Vector3f position;  ///< odom frame
@@ -68,18 +93,80 @@ class MappingNodelet : public nodelet::Nodelet {
     extrinsic_ = std::make_unique<CameraExtrinsic>(options_.frames.base_frame, 0.0);
     cloud_publisher_ = node.advertise<sensor_msgs::PointCloud2>("semantic_edge_map", 1, /*latch=*/true);
     path_publisher_ = node.advertise<nav_msgs::Path>("path", 1);
+    map_publisher_ = node.advertise<KeyframeMap>("keyframe_map", 2, /*latch=*/true);
+    outcome_publisher_ = node.advertise<MappingOutcomeMessage>("mapping_outcome", 1000);
     tracked_subscriber_ = node.subscribe("tracked_frame", 100, &MappingNodelet::onTrackedFrame, this);  // late poses come in bursts
-    map_subscriber_ = node.subscribe("keyframe_map", 2, &MappingNodelet::onKeyframeMap, this);
     worker_ = std::thread(&MappingNodelet::run, this);
+    // Requests on a thread of their own: tracking may wait for their outcomes in its callback, and
+    // they must not wait for the manager's threads. Deep: the bound is the mapper's queue.
+    ros::NodeHandle request_node(node);
+    request_node.setCallbackQueue(&request_queue_);
+    request_subscriber_ = request_node.subscribe("mapping_request", 1000, &MappingNodelet::onRequest, this);
+    request_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &request_queue_);
+    request_spinner_->start();
+  }
+
+  void onRequest(const boost::shared_ptr<const MappingRequestMessage>& message) {
+    tracer_.received(request_subscriber_.getTopic(), message.get(), message->stamp);
+    if (!message->request.frame || !message->options) {
+      rejections_->reject("mapping request", "not_in_process",
+                          "mapping requests carry frames only inside one process: load Tracking and Mapping in one nodelet manager");
+      return;
+    }
+    std::lock_guard<std::mutex> lock(session_mutex_);
+    const bool new_session = !mapping_ || message->session != session_;
+    if (new_session) {
+      if (mapping_) NODELET_INFO_STREAM("a new odometry: mapping starts a new map");
+      mapping_.reset();  // finishes the request it is on
+      session_ = message->session;
+      const std::uint64_t session = session_;
+      mapping_ = std::make_unique<MappingThread>(*message->options, message->camera,
+                                                 [this, session](MappingOutcome outcome) { onOutcome(session, std::move(outcome)); });
+    }
+    {
+      // Not held while posting: a full queue answers its oldest request (onOutcome) at once.
+      std::lock_guard<std::mutex> stamps_lock(stamps_mutex_);
+      if (new_session) stamps_.clear();
+      stamps_[message->request.frame->index] = message->stamp;
+      while (stamps_.size() > kRememberedStamps) stamps_.erase(stamps_.begin());
+      camera_ = message->camera;
+      class_names_ = message->class_names;
+    }
+    mapping_->post(message->request);
+  }
+
+  /// On the mapping thread: the outcome goes back to tracking at once, its window to the worker.
+  void onOutcome(std::uint64_t session, MappingOutcome outcome) {
+    auto message = boost::make_shared<MappingOutcomeMessage>();
+    message->session = session;
+    std::shared_ptr<WindowJob> job;
+    {
+      std::lock_guard<std::mutex> lock(stamps_mutex_);
+      message->stamp = stampOf(outcome.frame_index);
+      if (outcome.window) {
+        job = std::make_shared<WindowJob>();
+        job->window = outcome.window;
+        job->stamp = message->stamp;
+        for (const auto& keyframe : outcome.window->keyframes) job->keyframe_stamps.push_back(stampOf(keyframe->frame->index));
+        job->camera = camera_;
+        job->class_names = class_names_;
+      }
+    }
+    if (!outcome.error.empty()) rejections_->reject("mapping request", "mapping_failed", outcome.error);
+    message->outcome = std::move(outcome);
+    outcome_publisher_.publish(boost::shared_ptr<const MappingOutcomeMessage>(message));
+    tracer_.published(outcome_publisher_, message.get(), message->stamp);
+    if (job) enqueue({nullptr, job});
+  }
+
+  ros::Time stampOf(int frame_index) const {
+    const auto stamp = stamps_.find(frame_index);
+    return stamp != stamps_.end() ? stamp->second : ros::Time();
   }
 
   void onTrackedFrame(const TrackedFrameConstPtr& tracked) {
     tracer_.received(tracked_subscriber_.getTopic(), tracked.get(), tracked->header.stamp);
     enqueue({tracked, nullptr});
-  }
-  void onKeyframeMap(const KeyframeMapConstPtr& map) {
-    tracer_.received(map_subscriber_.getTopic(), map.get(), map->header.stamp);
-    enqueue({nullptr, map});
   }
 
   void enqueue(Job job) {
@@ -105,7 +192,7 @@ class MappingNodelet : public nodelet::Nodelet {
         queue_.pop_front();
       }
       if (job.tracked) extendPath(*job.tracked);
-      if (job.map) updateMap(*job.map);
+      if (job.window) updateMap(*keyframeMapOf(*job.window));
     }
   }
 
@@ -145,6 +232,36 @@ class MappingNodelet : public nodelet::Nodelet {
       points.push_back({(T_odom_cam * p).cast<float>(), label, colourOf(class_names, label)});
     }
     return points;
+  }
+
+  /// The window as a KeyframeMap (the points whose depth is measured), published.
+  KeyframeMapConstPtr keyframeMapOf(const WindowJob& job) {
+    auto map = boost::make_shared<KeyframeMap>();
+    map->header.stamp = job.stamp;
+    map->header.frame_id = "world";
+    for (std::size_t k = 0; k < job.window->keyframes.size(); ++k) {
+      const Keyframe& keyframe = *job.window->keyframes[k];
+      MapKeyframe message;
+      message.id = static_cast<std::uint32_t>(keyframe.id);
+      message.stamp = job.keyframe_stamps[k];
+      message.pose_world_camera = toPoseMsg(keyframe.T_world_cam);
+      for (const MapPoint& point : keyframe.points) {
+        if (!point.hasDepth()) continue;
+        message.point_u.push_back(point.u);
+        message.point_v.push_back(point.v);
+        message.point_inverse_depth.push_back(static_cast<float>(point.inverse_depth));
+        message.point_inverse_depth_variance.push_back(static_cast<float>(point.inverse_depth_variance));
+        message.point_class_mask.push_back(point.class_mask);
+        message.point_normal_x.push_back(point.normal.x());
+        message.point_normal_y.push_back(point.normal.y());
+      }
+      map->keyframes.push_back(std::move(message));
+    }
+    map->camera_info = cameraInfoOf(job.camera, "");
+    map->class_names = job.class_names;
+    map_publisher_.publish(KeyframeMapConstPtr(map));
+    tracer_.published(map_publisher_, map.get(), job.stamp);
+    return map;
   }
 
   /// Commits keyframes that left the window to the voxel map, then publishes voxels + window.
@@ -219,8 +336,22 @@ class MappingNodelet : public nodelet::Nodelet {
   std::unique_ptr<InputRejections> rejections_;
   std::unique_ptr<CameraExtrinsic> extrinsic_;  // worker thread only
   MessageTracer tracer_;
-  ros::Publisher cloud_publisher_, path_publisher_;
-  ros::Subscriber tracked_subscriber_, map_subscriber_;
+  ros::Publisher cloud_publisher_, path_publisher_, map_publisher_, outcome_publisher_;
+  ros::Subscriber tracked_subscriber_;
+
+  // The requests' thread (the mapper's outcomes come on the mapping thread).
+  ros::CallbackQueue request_queue_;
+  ros::Subscriber request_subscriber_;
+  std::unique_ptr<ros::AsyncSpinner> request_spinner_;
+  std::mutex session_mutex_;  // guards session_ and mapping_
+  std::uint64_t session_ = 0;
+  std::unique_ptr<MappingThread> mapping_;
+  std::mutex stamps_mutex_;  // guards stamps_, camera_ and class_names_
+  /// Stamps of the session's recent frames by odometry index: the window's keyframes are among them.
+  std::map<int, ros::Time> stamps_;
+  static constexpr std::size_t kRememberedStamps = 2000;
+  PinholeCamera camera_;
+  std::vector<std::string> class_names_;
 
   std::mutex queue_mutex_;  // guards queue_ and stopping_
   std::condition_variable queue_ready_;

@@ -1,7 +1,7 @@
 // Tracking: SemanticEdgeFrame + NearestNeighborField (paired by stamp) -> the odometry (core
-// Odometry: initialisation, frame-to-keyframe tracking, depth filtering, keyframe decisions) ->
-// tf odom -> base_link and nav_msgs/Odometry for every trusted pose, TrackingStatus for every
-// frame, TrackedFrame and the KeyframeMap for the Mapping nodelet.
+// Odometry: initialisation, frame-to-keyframe tracking and its checks; its mapping runs in the
+// Mapping nodelet, reached through NodeletMappingLink) -> tf odom -> base_link and
+// nav_msgs/Odometry for every trusted pose, TrackingStatus for every frame, TrackedFrame for the path.
 #include <atomic>
 
 #include <message_filters/subscriber.h>
@@ -14,7 +14,6 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
-#include "semantic_edge_vo/KeyframeMap.h"
 #include "semantic_edge_vo/NearestNeighborField.h"
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
 #include "semantic_edge_vo/TrackedFrame.h"
@@ -25,6 +24,7 @@
 #include "semantic_edge_vo/ros/input_rejections.h"
 #include "semantic_edge_vo/config/live_options.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
+#include "semantic_edge_vo/ros/nodelet_mapping_link.h"
 #include "semantic_edge_vo/config/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
 #include "semantic_edge_vo/ros/stamp_order.h"
@@ -61,7 +61,6 @@ class TrackingNodelet : public nodelet::Nodelet {
     odometry_publisher_ = node.advertise<nav_msgs::Odometry>("odometry", burst);
     status_publisher_ = node.advertise<TrackingStatus>("tracking_status", burst);
     tracked_publisher_ = node.advertise<TrackedFrame>("tracked_frame", burst);
-    map_publisher_ = node.advertise<KeyframeMap>("keyframe_map", 2, /*latch=*/true);
     // Deep enough queues to absorb a slow frame (a keyframe) without dropping the next ones.
     frame_subscriber_.subscribe(node, "edge_frame", 20);
     field_subscriber_.subscribe(node, "nn_field", 20);
@@ -109,7 +108,14 @@ class TrackingNodelet : public nodelet::Nodelet {
       if (odometry_)
         for (const FramePose& pose : odometry_->flush()) publishPose(pose);
       camera_ = camera;
-      odometry_ = std::make_unique<Odometry>(options_, camera_, mapping_mode_);
+      odometry_.reset();  // its link first: one odometry's requests at a time
+      const auto stamp_of = [this](int index) {
+        const auto recent = stamps_.find(index);
+        return recent != stamps_.end() ? recent->second.header.stamp : ros::Time();
+      };
+      odometry_ = std::make_unique<Odometry>(
+          options_, camera_, mapping_mode_,
+          std::make_shared<NodeletMappingLink>(getNodeHandle(), options_, camera_, stamp_of, &class_names_, &tracer_));
       stamps_.clear();
       frame_count_ = 0;
     }
@@ -131,7 +137,7 @@ class TrackingNodelet : public nodelet::Nodelet {
     if (std::none_of(poses.begin(), poses.end(), [&](const FramePose& p) { return p.index == odometry_frame->index; }))
       publishStatus(frame->header, frame->class_map_age, nullptr);
     for (const FramePose& pose : poses) publishPose(pose);
-    for (const auto& window : odometry_->takeNewWindows()) publishKeyframes(*window, frame->header.stamp);
+    odometry_->takeNewWindows();  // the Mapping nodelet publishes them
     while (!stamps_.empty() && stamps_.begin()->first < frame_count_ - 100) stamps_.erase(stamps_.begin());
   }
 
@@ -202,35 +208,6 @@ class TrackingNodelet : public nodelet::Nodelet {
     status_publisher_.publish(TrackingStatusConstPtr(status));
   }
 
-  /// The keyframe window with the points whose depth is measured, for the Mapping nodelet.
-  void publishKeyframes(const KeyframeWindow& window, const ros::Time& stamp) {
-    auto map = boost::make_shared<KeyframeMap>();
-    map->header.stamp = stamp;
-    map->header.frame_id = "world";
-    for (const auto& keyframe : window.keyframes) {
-      MapKeyframe message;
-      message.id = static_cast<std::uint32_t>(keyframe->id);
-      const auto header = stamps_.find(keyframe->frame->index);
-      message.stamp = header != stamps_.end() ? header->second.header.stamp : ros::Time(keyframe->frame->time);
-      message.pose_world_camera = toPoseMsg(keyframe->T_world_cam);
-      for (const MapPoint& point : keyframe->points) {
-        if (!point.hasDepth()) continue;
-        message.point_u.push_back(point.u);
-        message.point_v.push_back(point.v);
-        message.point_inverse_depth.push_back(static_cast<float>(point.inverse_depth));
-        message.point_inverse_depth_variance.push_back(static_cast<float>(point.inverse_depth_variance));
-        message.point_class_mask.push_back(point.class_mask);
-        message.point_normal_x.push_back(point.normal.x());
-        message.point_normal_y.push_back(point.normal.y());
-      }
-      map->keyframes.push_back(std::move(message));
-    }
-    map->camera_info = cameraInfoOf(camera_, "");
-    map->class_names = class_names_;
-    map_publisher_.publish(KeyframeMapConstPtr(map));
-    tracer_.published(map_publisher_, map.get(), stamp);
-  }
-
   /// Without a base_link -> camera transform on tf, announce the default one so rviz can show the camera.
   void publishDefaultCameraTf(const std::string& camera_frame, const ros::Time& stamp, const Eigen::Isometry3d& T_base_cam) {
     geometry_msgs::TransformStamped transform = tf2::eigenToTransform(T_base_cam);
@@ -255,7 +232,7 @@ class TrackingNodelet : public nodelet::Nodelet {
   message_filters::Subscriber<SemanticEdgeFrame> frame_subscriber_;
   message_filters::Subscriber<NearestNeighborField> field_subscriber_;
   std::unique_ptr<Sync> sync_;
-  ros::Publisher odometry_publisher_, status_publisher_, tracked_publisher_, map_publisher_;
+  ros::Publisher odometry_publisher_, status_publisher_, tracked_publisher_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   std::string announced_camera_frame_;
@@ -272,7 +249,7 @@ class TrackingNodelet : public nodelet::Nodelet {
   };
   std::map<int, RecentFrame> stamps_;  ///< recent frames by odometry index (late poses)
   int frame_count_ = 0;
-  std::vector<std::string> class_names_;  ///< of the latest frame (the intake's class table)
+  std::vector<std::string> class_names_;  ///< of the latest frame (the intake's class table), for mapping
 };
 
 }  // namespace semantic_edge_vo

@@ -159,7 +159,9 @@ std::string runFrames(const GraphConfig& options, SequenceInput& input, int fram
   // In parallel mode a frame's pose is returned before mapping decides whether it becomes a keyframe.
   std::set<int> keyframe_frames;
   const auto takeKeyframes = [&odometry, &keyframe_frames] {
-    for (const auto& window : odometry.takeNewWindows()) keyframe_frames.insert(window->frame_index);
+    const std::vector<std::shared_ptr<const KeyframeWindow>> windows = odometry.takeNewWindows();
+    for (const auto& window : windows) keyframe_frames.insert(window->frame_index);
+    return windows;
   };
   record->intake_ms.assign(static_cast<std::size_t>(frames), 0.0);
   record->segmenter_ms.assign(static_cast<std::size_t>(frames), 0.0);
@@ -186,11 +188,11 @@ std::string runFrames(const GraphConfig& options, SequenceInput& input, int fram
     const auto odometry_start = std::chrono::steady_clock::now();
     const double odometry_cpu_start = processCpuSeconds();
     for (FramePose& pose : odometry.process(frame)) record->poses.push_back(pose);
-    takeKeyframes();
+    const auto windows = takeKeyframes();
     record->odometry_cpu_s += processCpuSeconds() - odometry_cpu_start;
     record->odometry_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - odometry_start).count();
     record->processing_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (*depth_report) stopOnError((*depth_report)->update(odometry.keyframes()), depth_report);
+    if (*depth_report) stopOnError((*depth_report)->update(odometry.activeKeyframe(), windows), depth_report);
     progress.update(i + 1);
   }
   odometry.finishMapping();
@@ -199,7 +201,7 @@ std::string runFrames(const GraphConfig& options, SequenceInput& input, int fram
   for (FramePose& pose : record->poses) pose.keyframe = keyframe_frames.count(pose.index) > 0;
   record->mapping_dropped = odometry.mappingDropped();
   if (host_known && readHostCpuTimes(&host_after)) record->stolen_share = stolenShare(host_before, host_after);
-  if (*depth_report) (*depth_report)->finish();
+  if (*depth_report) (*depth_report)->finish(odometry.activeKeyframe());
   std::sort(record->poses.begin(), record->poses.end(), [](const FramePose& a, const FramePose& b) { return a.index < b.index; });
   return "";
 }

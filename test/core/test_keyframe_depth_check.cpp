@@ -111,18 +111,24 @@ TEST(KeyframeDepthReport, ChecksEachKeyframeWhenNewAndWhenRetired) {
   ASSERT_TRUE(cv::imwrite((folder / "000008.png").string(), synthetic::encodeDepth(cv::Mat(60, 50, CV_32FC1, cv::Scalar(5.0f)))));
 
   KeyframeDepthReport report(folder.string());
-  std::deque<std::shared_ptr<Keyframe>> keyframes = {keyframeOf(3)};
-  EXPECT_EQ(report.update(keyframes), "");
-  EXPECT_EQ(report.update(keyframes), "");  // no new keyframe: nothing checked
-  keyframes.push_back(keyframeOf(7));
-  keyframes.back()->points[0].inverse_depth *= 3.0;  // one point three times too near
-  EXPECT_EQ(report.update(keyframes), "");
-  report.finish();
-  report.finish();  // nothing left to retire
+  const std::shared_ptr<const Keyframe> first = keyframeOf(3);
+  EXPECT_EQ(report.update(first, {}), "");
+  EXPECT_EQ(report.update(first, {}), "");  // no new keyframe: nothing checked
+  auto second = keyframeOf(7);
+  second->points[0].inverse_depth *= 3.0;  // one point three times too near
+  // The window the second keyframe made holds the first as that window left it: retired from there.
+  auto settled_first = std::make_shared<Keyframe>(*first);
+  settled_first->points[1].inverse_depth *= 3.0;
+  auto window = std::make_shared<KeyframeWindow>();
+  window->frame_index = 7;
+  window->keyframes = {settled_first, second};
+  EXPECT_EQ(report.update(second, {window}), "");
+  report.finish(second);
+  report.finish(second);  // nothing left to retire
   // Rows in order: frame, stage, edges, wrong edges, supportive, wrong supportive, scale (1), ...
   const std::string table = report.table();
   std::size_t at = 0;
-  for (const char* row : {"\n3 new 9 0 0 0 1 ", "\n3 retired 9 0 0 0 1 ", "\n7 new 9 1 0 0 1 ", "\n7 retired 9 1 0 0 1 "}) {
+  for (const char* row : {"\n3 new 9 0 0 0 1 ", "\n3 retired 9 1 0 0 1 ", "\n7 new 9 1 0 0 1 ", "\n7 retired 9 1 0 0 1 "}) {
     at = table.find(row, at);
     ASSERT_NE(at, std::string::npos) << row << " in\n" << table;
   }
@@ -130,9 +136,9 @@ TEST(KeyframeDepthReport, ChecksEachKeyframeWhenNewAndWhenRetired) {
   EXPECT_NE(report.summary().find("new 2: 11 % of edge"), std::string::npos) << report.summary();
 
   KeyframeDepthReport missing(folder.string());
-  EXPECT_NE(missing.update({keyframeOf(9)}).find("000009.png: no such depth file"), std::string::npos);
+  EXPECT_NE(missing.update(keyframeOf(9), {}).find("000009.png: no such depth file"), std::string::npos);
   KeyframeDepthReport other_size(folder.string());
-  EXPECT_NE(other_size.update({keyframeOf(8)}).find("50x60, the images are 100x60"), std::string::npos);
+  EXPECT_NE(other_size.update(keyframeOf(8), {}).find("50x60, the images are 100x60"), std::string::npos);
   std::filesystem::remove_all(folder);
 }
 

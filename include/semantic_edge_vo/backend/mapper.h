@@ -3,6 +3,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -13,9 +14,14 @@
 
 namespace semantic_edge_vo {
 
-/// A frame tracked and trusted, handed from tracking to mapping.
+/// What tracking hands to mapping: a frame tracked and trusted, or a new map from an initialisation.
 struct MappingRequest {
   std::shared_ptr<const OdometryFrame> frame;
+  /// A new map: `frame` at `T_world_cam` is its first keyframe, its candidates' inverse depths
+  /// `inverse_depths` (0: none; one per candidate). The fields below it are unused.
+  bool new_map = false;
+  Eigen::Isometry3d T_world_cam = Eigen::Isometry3d::Identity();
+  std::vector<double> inverse_depths;
   int keyframe_id = -1;  ///< the keyframe it was tracked against (tracking.T_cam_kf is relative to it)
   TrackingResult tracking;
   /// A frame that waited for the initialisation: it refines the first keyframe's depths and follows
@@ -32,6 +38,8 @@ struct KeyframeWindow {
 /// What mapping did with one request.
 struct MappingOutcome {
   int frame_index = -1;
+  bool dropped = false;  ///< dropped unmapped from a full queue (parallel mapping); nothing else is set
+  std::string error;     ///< what mapping failed with on the request (dropped); empty when it did not
   /// The request was tracked against a keyframe that has left the window (parallel mode: mapping
   /// made new ones meanwhile); nothing was done.
   bool stale = false;
@@ -50,7 +58,8 @@ struct MappingOutcome {
   Eigen::Isometry3d window_correction = Eigen::Isometry3d::Identity();
   /// The window's keyframe poses afterwards, by id: where tracking's keyframes are now.
   std::map<int, Eigen::Isometry3d> keyframe_poses;
-  std::shared_ptr<const KeyframeWindow> window;  ///< the window after a new keyframe (else null)
+  /// The window after a new keyframe, a new map or a frame that waited for the initialisation (else null).
+  std::shared_ptr<const KeyframeWindow> window;
   double mapping_ms = 0.0;  ///< all of it, the windowed optimisation included
   double window_ms = 0.0;   ///< the windowed optimisation
 };
@@ -63,24 +72,19 @@ class Mapper {
  public:
   Mapper(const OdometryOptions& options, const PinholeCamera& camera);
 
-  /// A new map from the initialisation: `frame` at `T_world_cam` is its first keyframe, its
-  /// candidates' inverse depths `inverse_depths` (0: none; one per candidate). Returns it.
-  std::shared_ptr<const Keyframe> startMap(const std::shared_ptr<const OdometryFrame>& frame, const Eigen::Isometry3d& T_world_cam,
-                                           const std::vector<double>& inverse_depths);
-  /// Refines the active keyframe with a tracked frame, and makes the frame a keyframe when it
-  /// should be one (flow, points in view, interval with parallax) and its depths agree with the map.
+  /// A new map: starts it (outcome.active is its first keyframe). A tracked frame: refines the
+  /// active keyframe with it, and makes the frame a keyframe when it should be one (flow, points in
+  /// view, interval with parallax) and its depths agree with the map.
   MappingOutcome map(const MappingRequest& request);
 
-  /// A copy of the window, its newest keyframe made from frame `frame_index`.
-  std::shared_ptr<const KeyframeWindow> window(int frame_index) const;
   /// Called (on the mapping thread) with each new keyframe before the windowed optimisation
   /// settles it (outcome.provisional), its points triangulated from the tracked pose: tracking can
   /// use it 100 ms sooner.
   void onProvisionalKeyframe(std::function<void(MappingOutcome)> callback) { on_provisional_ = std::move(callback); }
-  /// The window (the mapper's own keyframes; read while mapping is idle).
-  const std::deque<std::shared_ptr<Keyframe>>& keyframes() const { return keyframes_; }
-
  private:
+  void startMap(const MappingRequest& request);
+  /// A copy of the window.
+  std::shared_ptr<const KeyframeWindow> window() const;
   /// The keyframe of the window with this id; null when it has left the window.
   const Keyframe* keyframeWithId(int id) const;
   std::map<int, Eigen::Isometry3d> keyframePoses() const;

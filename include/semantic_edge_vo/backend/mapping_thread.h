@@ -2,52 +2,46 @@
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
+#include <functional>
 #include <mutex>
-#include <string>
 #include <thread>
 #include <vector>
 
 #include "semantic_edge_vo/backend/mapper.h"
+#include "semantic_edge_vo/backend/mapping_link.h"
 
 namespace semantic_edge_vo {
 
-/// Runs a Mapper on its own thread (parallel mapping): tracking posts the frames it trusted and
-/// collects what mapping made of them before tracking the next frame (a new keyframe twice: as
-/// provisional before its window runs, then settled); it never waits, except for waitUntilIdle()
-/// (a new map) and the destructor (the request being mapped is finished).
-class MappingThread {
+/// A Mapper on its own thread behind a bounded queue. Its outcomes are taken (takeOutcomes) or,
+/// when a delivery callback is given, handed to it on the mapping thread as they are made (the
+/// Mapping nodelet publishes them). The destructor finishes the request being mapped.
+class MappingThread : public MappingLink {
  public:
-  /// @param[in] mapper used from the thread only, until waitUntilIdle() returns; must outlive this object
-  MappingThread(Mapper* mapper, std::size_t queue_size);
-  ~MappingThread();
+  using Delivery = std::function<void(MappingOutcome)>;
+  /// @param[in] deliver called on the mapping thread with each outcome; empty: takeOutcomes() has them
+  MappingThread(const OdometryOptions& options, const PinholeCamera& camera, Delivery deliver = nullptr);
+  ~MappingThread() override;
   MappingThread(const MappingThread&) = delete;
   MappingThread& operator=(const MappingThread&) = delete;
 
-  /// Queues a request; when the queue is full its oldest request is dropped.
-  void post(MappingRequest request);
-  /// The outcomes of the requests mapped since the last call, in order. Throws std::runtime_error
-  /// with what a request failed with (it was dropped; mapping goes on).
-  std::vector<MappingOutcome> takeOutcomes();
-  /// Waits until the queue is empty and no request is being mapped (the caller may then use the mapper).
-  void waitUntilIdle();
-  /// Waits until mapping has an outcome for this frame or a later one (a new keyframe's provisional
-  /// outcome counts), or has gone idle (the request was dropped).
-  void waitForFrame(int frame_index);
-  /// Requests dropped from a full queue so far.
-  int dropped() const;
+  void post(MappingRequest request) override;
+  std::vector<MappingOutcome> takeOutcomes() override;
+  void waitForFrame(int frame_index) override;
+  void waitUntilIdle() override;
 
  private:
   void run();
+  /// Hands an outcome over (mutex_ held).
+  void handOver(MappingOutcome outcome);
 
-  Mapper* mapper_;
+  Mapper mapper_;  ///< used by the mapping thread only
   std::size_t capacity_;
+  Delivery deliver_;
   mutable std::mutex mutex_;
   std::condition_variable wake_, idle_, mapped_;
   std::deque<MappingRequest> queue_;
   std::vector<MappingOutcome> outcomes_;
-  std::string error_;
   bool busy_ = false, stop_ = false;
-  int dropped_ = 0;
   int mapped_up_to_ = -1;  ///< the newest frame with an outcome
   std::thread thread_;  ///< started once the rest is constructed
 };

@@ -7,7 +7,7 @@
 
 #include "semantic_edge_vo/backend/keyframe.h"
 #include "semantic_edge_vo/backend/mapper.h"
-#include "semantic_edge_vo/backend/mapping_thread.h"
+#include "semantic_edge_vo/backend/mapping_link.h"
 #include "semantic_edge_vo/backend/odometry_options.h"
 #include "semantic_edge_vo/backend/two_view_initializer.h"
 #include "semantic_edge_vo/frontend/frame_consistency.h"
@@ -50,11 +50,14 @@ struct FramePose {
 /// Monocular semantic edge odometry: initialisation, frame-to-keyframe tracking (photometric + edge
 /// residuals) with its checks against the recent frames, and the mapping half (Mapper: keyframe
 /// decisions, inverse depths of new points from epipolar search filtered over the following frames,
-/// edge points restricted to edges of the same class, the windowed optimisation), run after each
-/// frame (MappingMode::kDeterministic, the offline runner's) or on its own thread (kParallel).
+/// edge points restricted to edges of the same class, the windowed optimisation) on its own thread
+/// or in another component, behind a MappingLink. Tracking waits for mapping after each frame
+/// (MappingMode::kDeterministic, the offline runner's) or only for a keyframe it asked for (kParallel).
 class Odometry {
  public:
-  Odometry(const OdometryOptions& options, const PinholeCamera& camera, MappingMode mapping = MappingMode::kDeterministic);
+  /// @param[in] mapping where mapping runs; null: a MappingThread of this object's own
+  Odometry(const OdometryOptions& options, const PinholeCamera& camera, MappingMode mode = MappingMode::kDeterministic,
+           std::shared_ptr<MappingLink> mapping = nullptr);
 
   /// Processes the next frame (frames in order). Returns the poses that became final: normally this
   /// frame's; none while initialising; all the waiting frames' when initialisation succeeds. In
@@ -75,23 +78,27 @@ class Odometry {
   std::vector<std::shared_ptr<const KeyframeWindow>> takeNewWindows();
 
   OdometryState state() const { return state_; }
-  MappingMode mappingMode() const { return mapping_thread_ ? MappingMode::kParallel : MappingMode::kDeterministic; }
+  MappingMode mappingMode() const { return parallel_ ? MappingMode::kParallel : MappingMode::kDeterministic; }
   /// Frames mapping dropped from its full queue (parallel mode).
-  int mappingDropped() const { return mapping_thread_ ? mapping_thread_->dropped() : 0; }
-  /// The mapper's own keyframes; deterministic mode only (in parallel mode the mapping thread changes them).
-  const std::deque<std::shared_ptr<Keyframe>>& keyframes() const { return mapper_.keyframes(); }
+  int mappingDropped() const { return mapping_dropped_; }
+  /// The keyframe tracking uses: mapping's copy of its active keyframe, refined by the frames so far (null before the first).
+  const std::shared_ptr<const Keyframe>& activeKeyframe() const { return keyframe_; }
 
  private:
   /// `start`: when the frame's processing began (its time is the waiting frame's).
   std::vector<FramePose> initialize(const std::shared_ptr<const OdometryFrame>& frame, std::chrono::steady_clock::time_point start);
   void startInitialization(const std::shared_ptr<const OdometryFrame>& frame);
-  /// The first waiting frame as the first keyframe, with the initialiser's depths, where the
-  /// odometry predicts it (at the last map's scale after a loss); `T_last_first` gets the newest
-  /// waiting frame's pose relative to it at that scale.
-  void makeFirstKeyframe(Eigen::Isometry3d* T_last_first);
+  /// The first waiting frame as the first keyframe of a new map, with the initialiser's depths,
+  /// where the odometry predicts it (at the last map's scale after a loss); `T_last_first` gets the
+  /// newest waiting frame's pose relative to it at that scale. Returns the new map's window.
+  std::shared_ptr<const KeyframeWindow> makeFirstKeyframe(Eigen::Isometry3d* T_last_first);
   /// The poses of the frames that waited for the initialisation: the keyframe's, then each tracked
   /// against it from its share of `T_last_first`; the odometry tracks on.
-  std::vector<FramePose> posesOfWaitingFrames(const Eigen::Isometry3d& T_last_first, double keyframe_ms);
+  std::vector<FramePose> posesOfWaitingFrames(const Eigen::Isometry3d& T_last_first, std::shared_ptr<const KeyframeWindow> window,
+                                              double keyframe_ms);
+  /// Hands a request to mapping and waits for its outcome (deterministic mode, the initialisation).
+  /// Throws std::runtime_error when mapping failed on it.
+  MappingOutcome mapNow(MappingRequest request);
   /// After a loss, tracks the frame against the map it had (the view may come back: an occlusion, a
   /// standing car). On success the odometry tracks on, `poses` gets the waiting frames' untrusted
   /// predictions and the frame's pose; otherwise nothing changes.
@@ -126,8 +133,9 @@ class Odometry {
   Tracker tracker_;
   std::shared_ptr<const Keyframe> keyframe_;  ///< tracked against: mapping's copy of its active keyframe
   TwoViewInitializer initializer_;
-  Mapper mapper_;
-  std::unique_ptr<MappingThread> mapping_thread_;  ///< parallel mode; after mapper_, which it uses
+  std::shared_ptr<MappingLink> mapping_;
+  bool parallel_ = false;
+  int mapping_dropped_ = 0;  ///< requests mapping dropped from its full queue
   std::vector<std::shared_ptr<const KeyframeWindow>> new_windows_;
   OdometryState state_ = OdometryState::kInitializing;
   bool recovering_ = false;

@@ -1,11 +1,11 @@
 #pragma once
-#include <deque>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "semantic_edge_vo/backend/keyframe.h"
+#include "semantic_edge_vo/backend/mapper.h"
 #include "semantic_edge_vo/eval/keyframe_depth_check.h"
 
 namespace semantic_edge_vo {
@@ -21,11 +21,12 @@ class KeyframeDepthReport {
   explicit KeyframeDepthReport(std::string depth_folder, double tolerance = kDepthCheckTolerance)
       : depth_folder_(std::move(depth_folder)), tolerance_(tolerance) {}
 
-  /// Call after each Odometry::process with its keyframes. Empty on success, else what is wrong with
-  /// the depth file of a keyframe (the caller may stop reporting; the odometry is not affected).
-  std::string update(const std::deque<std::shared_ptr<Keyframe>>& keyframes);
-  /// Checks the newest keyframe as retired: call once, after the last frame.
-  void finish();
+  /// Call after each Odometry::process with its active keyframe and the windows made since the last
+  /// call. Empty on success, else what is wrong with the depth file of a keyframe (the caller may
+  /// stop reporting; the odometry is not affected).
+  std::string update(const std::shared_ptr<const Keyframe>& active, const std::vector<std::shared_ptr<const KeyframeWindow>>& windows);
+  /// Checks the newest keyframe as retired: call once, after the last frame, with the active keyframe.
+  void finish(const std::shared_ptr<const Keyframe>& active);
   /// One line per check: frame, stage, counts, scale, median error.
   std::string table() const;
   /// Medians over the keyframes of each stage, one line.
@@ -43,7 +44,7 @@ class KeyframeDepthReport {
 
   std::string depth_folder_;
   double tolerance_;
-  std::shared_ptr<const Keyframe> newest_;  ///< checked as new, to be checked again when retired
+  std::shared_ptr<const Keyframe> newest_;  ///< checked as new, to be checked again when retired (its latest copy)
   cv::Mat newest_depth_;                    ///< its true depths, read once
   std::vector<Row> rows_;
 };

@@ -1,5 +1,6 @@
 #pragma once
 #include <map>
+#include <mutex>
 #include <string>
 
 #include <ros/time.h>
@@ -7,7 +8,7 @@
 namespace semantic_edge_vo {
 
 /// Refused inputs: every refusal is counted and logged as a named error, throttled per reason so
-/// that one bad stream does not hide another and does not flood the log.
+/// that one bad stream does not hide another and does not flood the log. Thread-safe.
 class InputRejections {
  public:
   InputRejections(std::string owner, double throttle_seconds = 5.0)
@@ -15,7 +16,10 @@ class InputRejections {
 
   /// Logs "<owner>: dropped <what>: <reason_name>: <detail>" at most once per throttle period per reason.
   void reject(const std::string& what, const std::string& reason_name, const std::string& detail);
-  unsigned long total() const { return total_; }
+  unsigned long total() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return total_;
+  }
 
  private:
   struct Reason {
@@ -25,6 +29,7 @@ class InputRejections {
   };
   std::string owner_;
   double throttle_seconds_;
+  mutable std::mutex mutex_;
   std::map<std::string, Reason> reasons_;
   unsigned long total_ = 0;
 };

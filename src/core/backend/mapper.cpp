@@ -22,13 +22,13 @@ Mapper::Mapper(const OdometryOptions& options, const PinholeCamera& camera)
       keyframe_motion_(options.keyframe_motion, camera),
       class_reliability_(options.class_reliability) {}
 
-std::shared_ptr<const Keyframe> Mapper::startMap(const std::shared_ptr<const OdometryFrame>& frame, const Eigen::Isometry3d& T_world_cam,
-                                                 const std::vector<double>& inverse_depths) {
+void Mapper::startMap(const MappingRequest& request) {
   auto keyframe = std::make_shared<Keyframe>();
   keyframe->id = next_keyframe_id_++;
-  keyframe->T_world_cam = T_world_cam;
-  keyframe->frame = frame;
+  keyframe->T_world_cam = request.T_world_cam;
+  keyframe->frame = request.frame;
   takeCandidates(keyframe.get());
+  const std::vector<double>& inverse_depths = request.inverse_depths;
   for (std::size_t i = 0; i < keyframe->points.size() && i < inverse_depths.size(); ++i) {
     if (!(inverse_depths[i] > 0.0)) continue;
     MapPoint& point = keyframe->points[i];
@@ -43,13 +43,21 @@ std::shared_ptr<const Keyframe> Mapper::startMap(const std::shared_ptr<const Odo
   keyframes_.push_back(keyframe);
   setActiveKeyframe(keyframe);
   frames_since_keyframe_ = 0;
-  return std::make_shared<const Keyframe>(*active_);
 }
 
 MappingOutcome Mapper::map(const MappingRequest& request) {
   const auto start = std::chrono::steady_clock::now();
   MappingOutcome outcome;
   outcome.frame_index = request.frame->index;
+  if (request.new_map) {
+    startMap(request);
+    outcome.T_world_cam = request.T_world_cam;
+    outcome.active = std::make_shared<const Keyframe>(*active_);
+    outcome.keyframe_poses = keyframePoses();
+    outcome.window = window();
+    outcome.mapping_ms = elapsedMs(start);
+    return outcome;
+  }
   const Keyframe* tracked_against = active_ ? keyframeWithId(request.keyframe_id) : nullptr;
   if (!tracked_against) {
     outcome.stale = true;
@@ -74,6 +82,8 @@ MappingOutcome Mapper::map(const MappingRequest& request) {
   }
   outcome.active = std::make_shared<const Keyframe>(*active_);
   outcome.keyframe_poses = keyframePoses();
+  // The first keyframe's window as the frames that waited for it refined it (the last one's is the map's start).
+  if (request.waited_for_initialization) outcome.window = window();
   outcome.mapping_ms = elapsedMs(start);
   return outcome;
 }
@@ -160,7 +170,7 @@ void Mapper::makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d
   outcome->keyframe = true;
   outcome->window_correction = keyframe->T_world_cam * T_world_cam.inverse();
   outcome->T_world_cam = keyframe->T_world_cam;
-  outcome->window = window(request.frame->index);
+  outcome->window = window();
 }
 
 double Mapper::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const {
@@ -180,9 +190,9 @@ void Mapper::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {
   if (keyframe_motion_.enabled()) keyframe_motion_.start(active_->id, active_->frame->index, gray8(*active_->frame));
 }
 
-std::shared_ptr<const KeyframeWindow> Mapper::window(int frame_index) const {
+std::shared_ptr<const KeyframeWindow> Mapper::window() const {
   auto window = std::make_shared<KeyframeWindow>();
-  window->frame_index = frame_index;
+  window->frame_index = keyframes_.back()->frame->index;
   for (const auto& keyframe : keyframes_) window->keyframes.push_back(std::make_shared<const Keyframe>(*keyframe));
   return window;
 }

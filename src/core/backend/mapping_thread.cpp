@@ -1,17 +1,15 @@
 #include "semantic_edge_vo/backend/mapping_thread.h"
 
 #include <algorithm>
-#include <stdexcept>
 
 namespace semantic_edge_vo {
 
-MappingThread::MappingThread(Mapper* mapper, std::size_t queue_size)
-    : mapper_(mapper), capacity_(queue_size < 1 ? 1 : queue_size) {
-  mapper_->onProvisionalKeyframe([this](MappingOutcome outcome) {
+MappingThread::MappingThread(const OdometryOptions& options, const PinholeCamera& camera, Delivery deliver)
+    : mapper_(options, camera), capacity_(static_cast<std::size_t>(std::max(1, options.mapping_queue))), deliver_(std::move(deliver)) {
+  mapper_.onProvisionalKeyframe([this](MappingOutcome outcome) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      mapped_up_to_ = std::max(mapped_up_to_, outcome.frame_index);
-      outcomes_.push_back(std::move(outcome));
+      handOver(std::move(outcome));
     }
     mapped_.notify_all();
   });
@@ -26,15 +24,23 @@ MappingThread::~MappingThread() {
   }
   wake_.notify_all();
   thread_.join();
-  mapper_->onProvisionalKeyframe(nullptr);
+}
+
+void MappingThread::handOver(MappingOutcome outcome) {
+  mapped_up_to_ = std::max(mapped_up_to_, outcome.frame_index);
+  if (deliver_) deliver_(std::move(outcome));
+  else outcomes_.push_back(std::move(outcome));
 }
 
 void MappingThread::post(MappingRequest request) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (queue_.size() >= capacity_) {
+      MappingOutcome dropped;
+      dropped.frame_index = queue_.front().frame->index;
+      dropped.dropped = true;
       queue_.pop_front();
-      ++dropped_;
+      handOver(std::move(dropped));
     }
     queue_.push_back(std::move(request));
   }
@@ -43,13 +49,8 @@ void MappingThread::post(MappingRequest request) {
 
 std::vector<MappingOutcome> MappingThread::takeOutcomes() {
   std::vector<MappingOutcome> outcomes;
-  std::string error;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    outcomes.swap(outcomes_);
-    error.swap(error_);
-  }
-  if (!error.empty()) throw std::runtime_error("mapping: " + error);
+  std::lock_guard<std::mutex> lock(mutex_);
+  outcomes.swap(outcomes_);
   return outcomes;
 }
 
@@ -63,11 +64,6 @@ void MappingThread::waitUntilIdle() {
   idle_.wait(lock, [this] { return queue_.empty() && !busy_; });
 }
 
-int MappingThread::dropped() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return dropped_;
-}
-
 void MappingThread::run() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
@@ -78,17 +74,17 @@ void MappingThread::run() {
     busy_ = true;
     lock.unlock();
     MappingOutcome outcome;
-    std::string error;
     try {
-      outcome = mapper_->map(request);
+      outcome = mapper_.map(request);
     } catch (const std::exception& e) {
-      error = e.what();
+      outcome = MappingOutcome();
+      outcome.frame_index = request.frame->index;
+      outcome.dropped = true;
+      outcome.error = e.what();
     }
     lock.lock();
     busy_ = false;
-    mapped_up_to_ = std::max(mapped_up_to_, request.frame->index);
-    if (error.empty()) outcomes_.push_back(std::move(outcome));
-    else error_ = error;
+    handOver(std::move(outcome));
     mapped_.notify_all();
     if (queue_.empty()) idle_.notify_all();
   }

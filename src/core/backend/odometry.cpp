@@ -6,8 +6,10 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "odometry_detail.h"
+#include "semantic_edge_vo/backend/mapping_thread.h"
 #include "semantic_edge_vo/common/robust_statistics.h"
 
 namespace semantic_edge_vo {
@@ -57,14 +59,13 @@ bool parseMappingMode(const std::string& text, MappingMode* mode) {
   return true;
 }
 
-Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera, MappingMode mapping)
+Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera, MappingMode mode, std::shared_ptr<MappingLink> mapping)
     : options_(options),
       camera_(camera),
       tracker_(options.tracker),
       initializer_(options.initializer, camera),
-      mapper_(options, camera) {
-  if (mapping == MappingMode::kParallel) mapping_thread_ = std::make_unique<MappingThread>(&mapper_, options.mapping_queue);
-}
+      mapping_(mapping ? std::move(mapping) : std::make_shared<MappingThread>(options, camera)),
+      parallel_(mode == MappingMode::kParallel) {}
 
 std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFrame>& frame) {
   if (state_ != OdometryState::kTracking) {
@@ -77,7 +78,7 @@ std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFra
   // the old one (in a turn, hundreds of px). Tracking waits for it as it waits in deterministic
   // mode, but only until its points are triangulated (the provisional keyframe), not for the window.
   const auto start = std::chrono::steady_clock::now();
-  if (mapping_thread_ && keyframe_asked_by_ >= 0) mapping_thread_->waitForFrame(keyframe_asked_by_);
+  if (parallel_ && keyframe_asked_by_ >= 0) mapping_->waitForFrame(keyframe_asked_by_);
   keyframe_asked_by_ = -1;
   collectMapping();
   const double waited_ms = elapsedMs(start);
@@ -87,15 +88,18 @@ std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFra
 }
 
 void Odometry::collectMapping() {
-  if (!mapping_thread_) return;
+  if (!parallel_) return;
   // The newest pose was tracked against keyframe_, where tracking had it; it moves as the window
   // has moved that keyframe since, or, when the frame itself became a keyframe, as the window moved it.
   int anchor_id = keyframe_ ? keyframe_->id : -1;
   Eigen::Isometry3d anchor_pose = keyframe_ ? keyframe_->T_world_cam : Eigen::Isometry3d::Identity();
   const MappingOutcome* newest = nullptr;
-  const std::vector<MappingOutcome> outcomes = mapping_thread_->takeOutcomes();
+  std::string error;
+  const std::vector<MappingOutcome> outcomes = mapping_->takeOutcomes();
   for (const MappingOutcome& outcome : outcomes) {
-    if (outcome.stale) continue;
+    mapping_dropped_ += outcome.dropped && outcome.error.empty();
+    if (!outcome.error.empty()) error = outcome.error;
+    if (outcome.stale || outcome.dropped) continue;
     newest = &outcome;
     if (outcome.keyframe) new_windows_.push_back(outcome.window);
     if (outcome.provisional && outcome.frame_index == motion_.lastStamp().index) {
@@ -103,17 +107,31 @@ void Odometry::collectMapping() {
       anchor_pose = motion_.lastPose();
     }
   }
-  if (!newest) return;
-  // Odom jumps once by this correction (docs/architecture.md); the velocity is kept.
-  const auto moved = newest->keyframe_poses.find(anchor_id);
-  if (moved != newest->keyframe_poses.end()) motion_.correct(moved->second * anchor_pose.inverse());
-  trackAgainst(newest->active);
+  if (newest) {
+    // Odom jumps once by this correction (docs/architecture.md); the velocity is kept.
+    const auto moved = newest->keyframe_poses.find(anchor_id);
+    if (moved != newest->keyframe_poses.end()) motion_.correct(moved->second * anchor_pose.inverse());
+    trackAgainst(newest->active);
+  }
+  if (!error.empty()) throw std::runtime_error("mapping dropped a frame it failed on: " + error);
 }
 
 void Odometry::finishMapping() {
-  if (!mapping_thread_) return;
-  mapping_thread_->waitUntilIdle();
+  mapping_->waitUntilIdle();
   collectMapping();
+}
+
+MappingOutcome Odometry::mapNow(MappingRequest request) {
+  const int frame_index = request.frame->index;
+  mapping_->post(std::move(request));
+  mapping_->waitUntilIdle();
+  for (MappingOutcome& outcome : mapping_->takeOutcomes())
+    if (outcome.frame_index == frame_index && !outcome.provisional) {
+      if (!outcome.error.empty()) throw std::runtime_error("mapping failed on frame " + std::to_string(frame_index) + ": " + outcome.error);
+      if (outcome.dropped) throw std::runtime_error("mapping dropped frame " + std::to_string(frame_index));
+      return outcome;
+    }
+  throw std::runtime_error("mapping gave no outcome for frame " + std::to_string(frame_index));
 }
 
 std::vector<std::shared_ptr<const KeyframeWindow>> Odometry::takeNewWindows() {
@@ -258,13 +276,13 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   request.frame = frame;
   request.keyframe_id = keyframe_->id;
   request.tracking = pose.tracking;
-  if (mapping_thread_) {
+  if (parallel_) {
     if (pose.tracking.mean_flow > options_.keyframe_flow) keyframe_asked_by_ = frame->index;
-    mapping_thread_->post(std::move(request));
+    mapping_->post(std::move(request));
     remember(pose);
     return pose;
   }
-  const MappingOutcome outcome = mapper_.map(request);
+  const MappingOutcome outcome = mapNow(std::move(request));
   pose.mapping_ms = outcome.mapping_ms;
   pose.window_ms = outcome.window_ms;
   pose.keyframe_scale = outcome.keyframe_scale;

@@ -12,18 +12,27 @@
 
 namespace semantic_edge_vo {
 
-std::string KeyframeDepthReport::update(const std::deque<std::shared_ptr<Keyframe>>& keyframes) {
-  if (keyframes.empty() || keyframes.back() == newest_) return "";
-  // A new keyframe: the one before it (still held here) has had all its frames.
-  finish();
-  const std::string error = load(*keyframes.back(), &newest_depth_);
+std::string KeyframeDepthReport::update(const std::shared_ptr<const Keyframe>& active,
+                                        const std::vector<std::shared_ptr<const KeyframeWindow>>& windows) {
+  if (!active) return "";
+  if (newest_ && newest_->id == active->id) {
+    newest_ = active;  // refined by the frames since
+    return "";
+  }
+  // A new keyframe: the one before it has had all its frames, and the window the new one made.
+  if (newest_ && !windows.empty())
+    for (const auto& keyframe : windows.back()->keyframes)
+      if (keyframe->id == newest_->id) newest_ = keyframe;
+  finish(nullptr);
+  const std::string error = load(*active, &newest_depth_);
   if (!error.empty()) return error;
-  newest_ = keyframes.back();
+  newest_ = active;
   check(*newest_, newest_depth_, false);
   return "";
 }
 
-void KeyframeDepthReport::finish() {
+void KeyframeDepthReport::finish(const std::shared_ptr<const Keyframe>& active) {
+  if (active && newest_ && active->id == newest_->id) newest_ = active;
   if (!newest_) return;
   check(*newest_, newest_depth_, true);
   newest_.reset();
