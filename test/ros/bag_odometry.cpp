@@ -6,6 +6,8 @@
 // it again without restarting the graph: its stamps jump back, the graph starts over and must give
 // the same trajectory again; and a third time with the tracking's reset service called halfway:
 // the odometry initialises again and odom goes on (within the same bound, every frame with a pose).
+// With mapping in parallel (bag_odometry_parallel.test) the frames are played at the camera's 10 Hz
+// and the trajectory depends on timing: the same passes, against the ground truth only.
 // Accuracy bound: Sim(3) ATE under 0.5 % of the path.
 // Monocular VO such as DSO or ORB-SLAM drifts 1-2 % of the distance on KITTI; 0.5 % over a 24 m
 // stretch is stricter, and still seven times what this odometry scores here (0.07 %), while a
@@ -93,6 +95,10 @@ TEST(BagOdometry, GraphGivesRunSequencesTrajectoryWithinHalfAPercentOfThePath) {
   });
   ros::Publisher image_publisher = node.advertise<sensor_msgs::Image>("/camera/image_rect", 2);
   ros::Publisher info_publisher = node.advertise<sensor_msgs::CameraInfo>("/camera/camera_info", 2);
+  std::string mapping_mode;
+  ASSERT_TRUE(ros::param::get("/tracking/mapping_mode", mapping_mode));
+  ASSERT_TRUE(mapping_mode == "deterministic" || mapping_mode == "parallel") << mapping_mode;
+  const bool deterministic = mapping_mode == "deterministic";
   ros::AsyncSpinner spinner(1);
   spinner.start();
   const ros::WallTime connect_deadline = ros::WallTime::now() + ros::WallDuration(30.0);
@@ -120,6 +126,8 @@ TEST(BagOdometry, GraphGivesRunSequencesTrajectoryWithinHalfAPercentOfThePath) {
         ASSERT_TRUE(ros::service::call("/tracking/reset", reset)) << "the tracking's reset service did not answer";
         EXPECT_TRUE(reset.response.success) << reset.response.message;
       }
+      // Parallel mapping gets the camera's frame period: the status comes before mapping is done.
+      const ros::WallTime next_frame = ros::WallTime::now() + ros::WallDuration(deterministic ? 0.0 : 0.1);
       info_publisher.publish(frame.second);
       image_publisher.publish(frame.first);
       stamps->push_back(stamp);
@@ -131,16 +139,14 @@ TEST(BagOdometry, GraphGivesRunSequencesTrajectoryWithinHalfAPercentOfThePath) {
         answered = states.count(stamp) > 0;
       }
       ASSERT_TRUE(answered) << "frame " << stamps->size() - 1 << " got no tracking status within 20 s";
+      ros::WallTime::sleepUntil(next_frame);
     }
     ASSERT_EQ(stamps->size(), static_cast<std::size_t>(kFrames));
     ros::WallDuration(2.0).sleep();  // poses of frames that waited for the initialisation come late
   };
 
   // The offline runner on the same sequence with the shipped config: its mapping runs after each
-  // frame, as the graph's does in the deterministic mode the test launch file sets.
-  std::string mapping_mode;
-  ASSERT_TRUE(ros::param::get("/tracking/mapping_mode", mapping_mode));
-  ASSERT_EQ(mapping_mode, "deterministic");
+  // frame, as the graph's does in deterministic mode.
   std::ofstream(dir + "/config.yaml") << std::ifstream(SEVO_SOURCE_DIR "/config/semantic_edge_vo.yaml").rdbuf();
   ASSERT_TRUE(runTool("run_sequence --sequence " + dir + "/city --output " + dir + "/offline --config " + dir +
                       "/config.yaml --quiet"));
@@ -179,9 +185,10 @@ TEST(BagOdometry, GraphGivesRunSequencesTrajectoryWithinHalfAPercentOfThePath) {
     std::printf("bag_odometry, pass %d: %zu of %d frames tracked over %.1f m (without a pose:%s); graph vs run_sequence: largest position difference "
                 "%.2e map units; Sim(3) ATE graph %.3f m, straight line %.3f m, run_sequence %.3f m\n",
                 pass, graph_poses.size(), kFrames, path, missing.c_str(), largest_difference, graph_ate, line_ate, simAte(true_poses, offline_poses));
-    if (against_offline)
+    // (In parallel mode timing decides which frames mapping takes: no trajectory to compare with.)
+    if (deterministic && against_offline)
       EXPECT_LT(largest_difference, 1e-6) << "pass " << pass << ": the graph and run_sequence gave different trajectories";
-    else
+    else if (deterministic)
       EXPECT_GT(largest_difference, 1e-6) << "pass " << pass << ": the reset must have started a new map";
     EXPECT_LT(graph_ate, 0.005 * path) << "pass " << pass << ": Sim(3) ATE above 0.5 % of the path";
   };
