@@ -89,12 +89,15 @@ void NodeletMappingLink::waitUntilIdle() {
 }
 
 void NodeletMappingLink::waitFor(std::unique_lock<std::mutex>& lock, const std::function<bool()>& done, const std::string& what) {
-  if (answered_.wait_for(lock, std::chrono::duration<double>(kAnswerTimeoutS), done)) return;
-  settled_ = posted_;  // given up: the next wait is for the next requests only
+  // Without a Mapping nodelet nothing will answer: no need to wait for the timeout to say so.
   const bool listened = publisher_.getNumSubscribers() > 0;
-  throw std::runtime_error("the Mapping nodelet did not answer " + what + " within " + std::to_string(static_cast<int>(kAnswerTimeoutS)) +
-                           " s" + (listened ? "" : " (nothing subscribes to " + publisher_.getTopic() +
-                                                       ": load semantic_edge_vo/Mapping in the same nodelet manager)"));
+  if (listened && answered_.wait_for(lock, std::chrono::duration<double>(kAnswerTimeoutS), done)) return;
+  if (!listened && done()) return;
+  settled_ = posted_;  // given up: the next wait is for the next requests only
+  if (!listened)
+    throw std::runtime_error("nothing subscribes to " + publisher_.getTopic() +
+                             ": load semantic_edge_vo/Mapping in the same nodelet manager as Tracking");
+  throw std::runtime_error("the Mapping nodelet did not answer " + what + " within " + std::to_string(static_cast<int>(kAnswerTimeoutS)) + " s");
 }
 
 }  // namespace semantic_edge_vo
