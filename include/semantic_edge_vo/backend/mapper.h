@@ -58,8 +58,7 @@ struct MappingOutcome {
   Eigen::Isometry3d window_correction = Eigen::Isometry3d::Identity();
   /// The window's keyframe poses afterwards, by id: where tracking's keyframes are now.
   std::map<int, Eigen::Isometry3d> keyframe_poses;
-  /// The window after a new keyframe, a new map or a frame that waited for the initialisation (else null).
-  std::shared_ptr<const KeyframeWindow> window;
+  std::shared_ptr<const KeyframeWindow> window;  ///< the window after a new keyframe or a new map (else null)
   double mapping_ms = 0.0;  ///< all of it, the windowed optimisation included
   double window_ms = 0.0;   ///< the windowed optimisation
 };
@@ -83,6 +82,10 @@ class Mapper {
   void onProvisionalKeyframe(std::function<void(MappingOutcome)> callback) { on_provisional_ = std::move(callback); }
  private:
   void startMap(const MappingRequest& request);
+  /// Refines the active keyframe with a tracked frame and makes the frame a keyframe when it should
+  /// be one (`outcome` gets what was done). False, nothing done, when the keyframe it was tracked
+  /// against has left the window.
+  bool refineWith(const MappingRequest& request, MappingOutcome* outcome);
   /// A copy of the window.
   std::shared_ptr<const KeyframeWindow> window() const;
   /// The keyframe of the window with this id; null when it has left the window.

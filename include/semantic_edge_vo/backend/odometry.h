@@ -90,12 +90,11 @@ class Odometry {
   void startInitialization(const std::shared_ptr<const OdometryFrame>& frame);
   /// The first waiting frame as the first keyframe of a new map, with the initialiser's depths,
   /// where the odometry predicts it (at the last map's scale after a loss); `T_last_first` gets the
-  /// newest waiting frame's pose relative to it at that scale. Returns the new map's window.
-  std::shared_ptr<const KeyframeWindow> makeFirstKeyframe(Eigen::Isometry3d* T_last_first);
+  /// newest waiting frame's pose relative to it at that scale.
+  void makeFirstKeyframe(Eigen::Isometry3d* T_last_first);
   /// The poses of the frames that waited for the initialisation: the keyframe's, then each tracked
   /// against it from its share of `T_last_first`; the odometry tracks on.
-  std::vector<FramePose> posesOfWaitingFrames(const Eigen::Isometry3d& T_last_first, std::shared_ptr<const KeyframeWindow> window,
-                                              double keyframe_ms);
+  std::vector<FramePose> posesOfWaitingFrames(const Eigen::Isometry3d& T_last_first, double keyframe_ms);
   /// Hands a request to mapping and waits for its outcome (deterministic mode, the initialisation).
   /// Throws std::runtime_error when mapping failed on it.
   MappingOutcome mapNow(MappingRequest request);

@@ -52,23 +52,26 @@ MappingOutcome Mapper::map(const MappingRequest& request) {
   if (request.new_map) {
     startMap(request);
     outcome.T_world_cam = request.T_world_cam;
-    outcome.active = std::make_shared<const Keyframe>(*active_);
-    outcome.keyframe_poses = keyframePoses();
     outcome.window = window();
-    outcome.mapping_ms = elapsedMs(start);
-    return outcome;
-  }
-  const Keyframe* tracked_against = active_ ? keyframeWithId(request.keyframe_id) : nullptr;
-  if (!tracked_against) {
+  } else if (!refineWith(request, &outcome)) {
     outcome.stale = true;
     return outcome;
   }
+  outcome.active = std::make_shared<const Keyframe>(*active_);
+  outcome.keyframe_poses = keyframePoses();
+  outcome.mapping_ms = elapsedMs(start);
+  return outcome;
+}
+
+bool Mapper::refineWith(const MappingRequest& request, MappingOutcome* outcome) {
+  const Keyframe* tracked_against = active_ ? keyframeWithId(request.keyframe_id) : nullptr;
+  if (!tracked_against) return false;
   // Where the window has the keyframe it was tracked against now, the frame is (parallel mapping:
   // the window may have moved it since tracking took its copy).
-  outcome.T_world_cam = orthonormalized(tracked_against->T_world_cam * request.tracking.T_cam_kf.inverse());
+  outcome->T_world_cam = orthonormalized(tracked_against->T_world_cam * request.tracking.T_cam_kf.inverse());
   const bool tracked_against_active = tracked_against == active_.get();
   const Eigen::Isometry3d T_cam_kf =
-      tracked_against_active ? request.tracking.T_cam_kf : outcome.T_world_cam.inverse() * active_->T_world_cam;
+      tracked_against_active ? request.tracking.T_cam_kf : outcome->T_world_cam.inverse() * active_->T_world_cam;
   const OdometryFrame& frame = *request.frame;
   std::shared_ptr<const SharedClassEdgeTest> frame_edges = depths_.refine(active_.get(), frame, T_cam_kf);
   if (keyframe_motion_.enabled()) keyframe_motion_.follow(frame.index, gray8(frame));
@@ -78,14 +81,9 @@ MappingOutcome Mapper::map(const MappingRequest& request) {
   // in view were another keyframe's: the decision waits for the frames tracked against this one.
   if (tracked_against_active && !request.waited_for_initialization) {
     if (frame.has_field && frame.classes_known) class_reliability_.observe(*active_, T_cam_kf, frame.field);
-    if (wantsKeyframe(request)) makeKeyframe(request, outcome.T_world_cam, std::move(frame_edges), &outcome);
+    if (wantsKeyframe(request)) makeKeyframe(request, outcome->T_world_cam, std::move(frame_edges), outcome);
   }
-  outcome.active = std::make_shared<const Keyframe>(*active_);
-  outcome.keyframe_poses = keyframePoses();
-  // The first keyframe's window as the frames that waited for it refined it (the last one's is the map's start).
-  if (request.waited_for_initialization) outcome.window = window();
-  outcome.mapping_ms = elapsedMs(start);
-  return outcome;
+  return true;
 }
 
 const Keyframe* Mapper::keyframeWithId(int id) const {

@@ -47,11 +47,11 @@ std::vector<FramePose> Odometry::initialize(const std::shared_ptr<const Odometry
   }
   const auto keyframe_start = std::chrono::steady_clock::now();
   Eigen::Isometry3d T_last_first;
-  std::shared_ptr<const KeyframeWindow> window = makeFirstKeyframe(&T_last_first);
-  return posesOfWaitingFrames(T_last_first, std::move(window), elapsedMs(keyframe_start));
+  makeFirstKeyframe(&T_last_first);
+  return posesOfWaitingFrames(T_last_first, elapsedMs(keyframe_start));
 }
 
-std::shared_ptr<const KeyframeWindow> Odometry::makeFirstKeyframe(Eigen::Isometry3d* T_last_first_out) {
+void Odometry::makeFirstKeyframe(Eigen::Isometry3d* T_last_first_out) {
   // The first waiting frame becomes the first keyframe, anchored where the odometry predicts it
   // (identity at the very start), so that odom stays continuous after a loss.
   Eigen::Isometry3d T_last_first = initializer_.T_last_first();
@@ -78,12 +78,11 @@ std::shared_ptr<const KeyframeWindow> Odometry::makeFirstKeyframe(Eigen::Isometr
   request.inverse_depths = std::move(inverse_depths);
   MappingOutcome outcome = mapNow(std::move(request));
   trackAgainst(outcome.active);
+  new_windows_.push_back(outcome.window);
   *T_last_first_out = T_last_first;
-  return outcome.window;
 }
 
-std::vector<FramePose> Odometry::posesOfWaitingFrames(const Eigen::Isometry3d& T_last_first, std::shared_ptr<const KeyframeWindow> window,
-                                                      double keyframe_ms) {
+std::vector<FramePose> Odometry::posesOfWaitingFrames(const Eigen::Isometry3d& T_last_first, double keyframe_ms) {
   const std::shared_ptr<const Keyframe> keyframe = keyframe_;  // tracking moves on to its refined copies
   const int keyframe_id = keyframe->id;
   const Eigen::Isometry3d& T_world_first = keyframe->T_world_cam;
@@ -126,12 +125,10 @@ std::vector<FramePose> Odometry::posesOfWaitingFrames(const Eigen::Isometry3d& T
       const MappingOutcome outcome = mapNow(std::move(request));
       pose.mapping_ms = outcome.mapping_ms;
       trackAgainst(outcome.active);
-      window = outcome.window;
     }
     poses.push_back(pose);
     remember(pose);
   }
-  new_windows_.push_back(std::move(window));
   waiting_.clear();
   releaseFreedMemory();  // the burst: the frames that waited
   state_ = OdometryState::kTracking;
