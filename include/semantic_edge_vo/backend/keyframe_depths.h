@@ -33,7 +33,10 @@ class KeyframeDepths {
   /// previous keyframe's measured points, then an epipolar search against the previous keyframe.
   /// @return the scale of the new depths against the map's: the median of the map's inverse depths
   ///         over the measured ones, where both are known (1 when too few are)
-  double triangulate(Keyframe* keyframe, const Keyframe& previous) const;
+  /// @param map_depths if not null, gets the points as the map alone sees them, nothing measured
+  ///        anew: each takes the depth and variance of the previous keyframe's measured point that falls
+  ///        within 2 px of it (the nearest), as measured; the others have no depth
+  double triangulate(Keyframe* keyframe, const Keyframe& previous, std::vector<MapPoint>* map_depths = nullptr) const;
   /// Refines the keyframe's depths with a frame tracked at T_frame_kf. Returns the frame's edge test
   /// (null without a field), which the frame keeps if it becomes a keyframe.
   std::shared_ptr<const SharedClassEdgeTest> refine(Keyframe* keyframe, const OdometryFrame& frame, const Eigen::Isometry3d& T_frame_kf) const;

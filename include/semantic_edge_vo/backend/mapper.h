@@ -47,8 +47,9 @@ struct MappingOutcome {
   /// a copy tracking may use while mapping goes on.
   std::shared_ptr<const Keyframe> active;
   bool keyframe = false;  ///< the frame became a keyframe
-  /// `active` is a new keyframe whose window has not run yet: its pose and points as tracked
-  /// (parallel mapping hands it to tracking at once; the settled one follows with keyframe set).
+  /// `active` is a new keyframe whose window has not run yet: its pose as tracked, its points with
+  /// the map's depths (parallel mapping hands it to tracking at once; the settled one follows with
+  /// keyframe set).
   bool provisional = false;
   bool refused = false;   ///< it was to become one, but its depths disagreed with the map's scale
   double keyframe_scale = 1.0;  ///< the scale of its points against the map's (1: no keyframe attempted)
@@ -77,8 +78,9 @@ class Mapper {
   MappingOutcome map(const MappingRequest& request);
 
   /// Called (on the mapping thread) with each new keyframe before the windowed optimisation
-  /// settles it (outcome.provisional), its points triangulated from the tracked pose: tracking can
-  /// use it 100 ms sooner.
+  /// settles it (outcome.provisional): its pose as tracked, and only its points the map's measured
+  /// points fall on, with their depths (KeyframeDepths::triangulate's map_depths). Tracking can use it
+  /// 100 ms sooner.
   void onProvisionalKeyframe(std::function<void(MappingOutcome)> callback) { on_provisional_ = std::move(callback); }
  private:
   void startMap(const MappingRequest& request);
@@ -103,8 +105,8 @@ class Mapper {
   void makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d& T_world_cam,
                     std::shared_ptr<const SharedClassEdgeTest> frame_edges, MappingOutcome* outcome);
   /// The keyframe's points from its frame's candidates, their depths triangulated against the
-  /// previous keyframe (KeyframeDepths::triangulate, whose scale it returns).
-  double triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const;
+  /// previous keyframe (KeyframeDepths::triangulate, whose scale it returns; `map_depths` as there).
+  double triangulatePoints(Keyframe* keyframe, const Keyframe& previous, std::vector<MapPoint>* map_depths = nullptr) const;
   /// The keyframe's points from its frame's candidates, each matched in the SNNF layers the drive's
   /// class reliability gives its classes.
   void takeCandidates(Keyframe* keyframe) const;

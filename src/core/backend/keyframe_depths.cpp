@@ -13,6 +13,36 @@ std::shared_ptr<const SharedClassEdgeTest> edgeTestOf(const OdometryFrame& frame
   return frame.has_field ? std::make_shared<const SharedClassEdgeTest>(frame.field, radius) : nullptr;
 }
 
+// The points each take the depth of the nearest sample within radius px as if measured (one
+// observation, the sample's variance); the others get none.
+std::vector<MapPoint> adoptNearest(const std::vector<DepthSample>& samples, const std::vector<double>& variances,
+                                   const PinholeCamera& camera, double radius, std::vector<MapPoint> points) {
+  const int cols = static_cast<int>(std::ceil(camera.width / radius)), rows = static_cast<int>(std::ceil(camera.height / radius));
+  std::vector<std::vector<std::size_t>> buckets(static_cast<std::size_t>(cols * rows));
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const int bx = std::clamp(static_cast<int>(samples[i].pixel.x() / radius), 0, cols - 1);
+    const int by = std::clamp(static_cast<int>(samples[i].pixel.y() / radius), 0, rows - 1);
+    buckets[static_cast<std::size_t>(by * cols + bx)].push_back(i);
+  }
+  for (MapPoint& point : points) {
+    point.observations = 0;
+    point.inverse_depth = 0.0;
+    double nearest = radius;
+    const int bx = static_cast<int>(point.u / radius), by = static_cast<int>(point.v / radius);
+    for (int y = std::max(0, by - 1); y <= std::min(rows - 1, by + 1); ++y)
+      for (int x = std::max(0, bx - 1); x <= std::min(cols - 1, bx + 1); ++x)
+        for (std::size_t i : buckets[static_cast<std::size_t>(y * cols + x)]) {
+          const double distance = (samples[i].pixel - Eigen::Vector2d(point.u, point.v)).norm();
+          if (distance > nearest) continue;
+          nearest = distance;
+          point.inverse_depth = samples[i].inverse_depth;
+          point.inverse_depth_variance = variances[i];
+          point.observations = 1;
+        }
+  }
+  return points;
+}
+
 }  // namespace
 
 void KeyframeDepths::propagate(const std::vector<DepthSample>& samples, std::vector<MapPoint>* points) const {
@@ -42,16 +72,23 @@ void KeyframeDepths::propagate(const std::vector<DepthSample>& samples, std::vec
   }
 }
 
-double KeyframeDepths::triangulate(Keyframe* keyframe, const Keyframe& previous) const {
+double KeyframeDepths::triangulate(Keyframe* keyframe, const Keyframe& previous, std::vector<MapPoint>* map_depths) const {
   // Prior depths: the previous keyframe's measured points, seen from the new keyframe.
   const Eigen::Isometry3d T_new_old = keyframe->T_world_cam.inverse() * previous.T_world_cam;
   std::vector<DepthSample> samples;
+  std::vector<double> variances;
   for (const MapPoint& point : previous.points) {
     if (!point.hasDepth()) continue;
     const Eigen::Vector3d p = T_new_old * camera_.backProject(point.u, point.v, 1.0 / point.inverse_depth);
     const Eigen::Vector2d pixel = camera_.project(p);
-    if (p.z() > 1e-3 && camera_.contains(pixel.x(), pixel.y())) samples.push_back({pixel, 1.0 / p.z()});
+    if (p.z() > 1e-3 && camera_.contains(pixel.x(), pixel.y())) {
+      samples.push_back({pixel, 1.0 / p.z()});
+      // The same relative variance at the new depth.
+      variances.push_back(point.inverse_depth_variance * std::pow(1.0 / (p.z() * point.inverse_depth), 2));
+    }
   }
+  constexpr double kMapDepthRadius = 2.0;  // px: an edge's neighbour across it is another surface
+  if (map_depths) *map_depths = adoptNearest(samples, variances, camera_, kMapDepthRadius, keyframe->points);
   propagate(samples, &keyframe->points);
   std::vector<double> priors(keyframe->points.size(), 0.0);  // of the points with map points near
   for (std::size_t i = 0; i < priors.size(); ++i)

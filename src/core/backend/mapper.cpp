@@ -128,7 +128,8 @@ void Mapper::makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d
   keyframe->frame = request.frame;
   // Its points triangulated from the tracked pose must see the map at the map's scale: a keyframe
   // whose depths disagree with it by more than the bound would hand the next frames a new scale.
-  outcome->keyframe_scale = triangulatePoints(keyframe.get(), *active_);
+  std::vector<MapPoint> map_depths;  // of the points the map's measured points fall on
+  outcome->keyframe_scale = triangulatePoints(keyframe.get(), *active_, &map_depths);
   if (std::abs(std::log(outcome->keyframe_scale)) > std::log1p(options_.consistency.max_keyframe_scale_change)) {
     outcome->refused = true;
     return;
@@ -138,6 +139,9 @@ void Mapper::makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d
     MappingOutcome provisional;
     provisional.frame_index = request.frame->index;
     provisional.provisional = true;
+    // Its points carry the map's depths, not those just triangulated: those agree with the tracked
+    // pose's error, and the frames tracked against them would carry it on (their inlier ratios fall).
+    keyframe->points = std::move(map_depths);
     provisional.active = std::make_shared<const Keyframe>(*keyframe);
     provisional.T_world_cam = T_world_cam;
     provisional.keyframe_poses = keyframePoses();
@@ -171,9 +175,9 @@ void Mapper::makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d
   outcome->window = window();
 }
 
-double Mapper::triangulatePoints(Keyframe* keyframe, const Keyframe& previous) const {
+double Mapper::triangulatePoints(Keyframe* keyframe, const Keyframe& previous, std::vector<MapPoint>* map_depths) const {
   takeCandidates(keyframe);
-  return depths_.triangulate(keyframe, previous);
+  return depths_.triangulate(keyframe, previous, map_depths);
 }
 
 void Mapper::takeCandidates(Keyframe* keyframe) const {
