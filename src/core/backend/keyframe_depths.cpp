@@ -13,32 +13,59 @@ std::shared_ptr<const SharedClassEdgeTest> edgeTestOf(const OdometryFrame& frame
   return frame.has_field ? std::make_shared<const SharedClassEdgeTest>(frame.field, radius) : nullptr;
 }
 
+// Samples bucketed in cells of `radius` px, so that those within radius of a pixel are found in the
+// 3x3 cells around it.
+class SampleGrid {
+ public:
+  SampleGrid(const std::vector<DepthSample>& samples, const PinholeCamera& camera, double radius)
+      : samples_(samples),
+        radius_(radius),
+        cols_(static_cast<int>(std::ceil(camera.width / radius))),
+        rows_(static_cast<int>(std::ceil(camera.height / radius))),
+        cells_(static_cast<std::size_t>(cols_ * rows_)) {
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const int cx = std::clamp(static_cast<int>(samples[i].pixel.x() / radius), 0, cols_ - 1);
+      const int cy = std::clamp(static_cast<int>(samples[i].pixel.y() / radius), 0, rows_ - 1);
+      cells_[static_cast<std::size_t>(cy * cols_ + cx)].push_back(i);
+    }
+  }
+
+  /// Calls visit(sample index, distance px) for each sample within the radius of (u, v).
+  template <typename Visit>
+  void forEachNear(float u, float v, Visit visit) const {
+    const Eigen::Vector2d pixel(u, v);
+    const int cx = static_cast<int>(u / radius_), cy = static_cast<int>(v / radius_);
+    for (int y = std::max(0, cy - 1); y <= std::min(rows_ - 1, cy + 1); ++y)
+      for (int x = std::max(0, cx - 1); x <= std::min(cols_ - 1, cx + 1); ++x)
+        for (std::size_t i : cells_[static_cast<std::size_t>(y * cols_ + x)]) {
+          const double distance = (samples_[i].pixel - pixel).norm();
+          if (distance <= radius_) visit(i, distance);
+        }
+  }
+
+ private:
+  const std::vector<DepthSample>& samples_;
+  double radius_;
+  int cols_, rows_;
+  std::vector<std::vector<std::size_t>> cells_;
+};
+
 // The points each take the depth of the nearest sample within radius px as if measured (one
 // observation, the sample's variance); the others get none.
 std::vector<MapPoint> adoptNearest(const std::vector<DepthSample>& samples, const std::vector<double>& variances,
                                    const PinholeCamera& camera, double radius, std::vector<MapPoint> points) {
-  const int cols = static_cast<int>(std::ceil(camera.width / radius)), rows = static_cast<int>(std::ceil(camera.height / radius));
-  std::vector<std::vector<std::size_t>> buckets(static_cast<std::size_t>(cols * rows));
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const int bx = std::clamp(static_cast<int>(samples[i].pixel.x() / radius), 0, cols - 1);
-    const int by = std::clamp(static_cast<int>(samples[i].pixel.y() / radius), 0, rows - 1);
-    buckets[static_cast<std::size_t>(by * cols + bx)].push_back(i);
-  }
+  const SampleGrid grid(samples, camera, radius);
   for (MapPoint& point : points) {
     point.observations = 0;
     point.inverse_depth = 0.0;
     double nearest = radius;
-    const int bx = static_cast<int>(point.u / radius), by = static_cast<int>(point.v / radius);
-    for (int y = std::max(0, by - 1); y <= std::min(rows - 1, by + 1); ++y)
-      for (int x = std::max(0, bx - 1); x <= std::min(cols - 1, bx + 1); ++x)
-        for (std::size_t i : buckets[static_cast<std::size_t>(y * cols + x)]) {
-          const double distance = (samples[i].pixel - Eigen::Vector2d(point.u, point.v)).norm();
-          if (distance > nearest) continue;
-          nearest = distance;
-          point.inverse_depth = samples[i].inverse_depth;
-          point.inverse_depth_variance = variances[i];
-          point.observations = 1;
-        }
+    grid.forEachNear(point.u, point.v, [&](std::size_t i, double distance) {
+      if (distance > nearest) return;
+      nearest = distance;
+      point.inverse_depth = samples[i].inverse_depth;
+      point.inverse_depth_variance = variances[i];
+      point.observations = 1;
+    });
   }
   return points;
 }
@@ -46,26 +73,15 @@ std::vector<MapPoint> adoptNearest(const std::vector<DepthSample>& samples, cons
 }  // namespace
 
 void KeyframeDepths::propagate(const std::vector<DepthSample>& samples, std::vector<MapPoint>* points) const {
-  const double radius = neighbour_radius_;
-  const int cols = static_cast<int>(std::ceil(camera_.width / radius)), rows = static_cast<int>(std::ceil(camera_.height / radius));
-  std::vector<std::vector<const DepthSample*>> buckets(static_cast<std::size_t>(cols * rows));
+  const SampleGrid grid(samples, camera_, neighbour_radius_);
   std::vector<double> all;
-  for (const DepthSample& sample : samples) {
-    const int bx = std::clamp(static_cast<int>(sample.pixel.x() / radius), 0, cols - 1);
-    const int by = std::clamp(static_cast<int>(sample.pixel.y() / radius), 0, rows - 1);
-    buckets[static_cast<std::size_t>(by * cols + bx)].push_back(&sample);
-    all.push_back(sample.inverse_depth);
-  }
+  for (const DepthSample& sample : samples) all.push_back(sample.inverse_depth);
   const double fallback = all.empty() ? default_inverse_depth_ : median(all);
   std::vector<double> near;
   for (MapPoint& point : *points) {
     if (point.hasDepth()) continue;
     near.clear();
-    const int bx = static_cast<int>(point.u / radius), by = static_cast<int>(point.v / radius);
-    for (int y = std::max(0, by - 1); y <= std::min(rows - 1, by + 1); ++y)
-      for (int x = std::max(0, bx - 1); x <= std::min(cols - 1, bx + 1); ++x)
-        for (const DepthSample* sample : buckets[static_cast<std::size_t>(y * cols + x)])
-          if ((sample->pixel - Eigen::Vector2d(point.u, point.v)).norm() <= radius) near.push_back(sample->inverse_depth);
+    grid.forEachNear(point.u, point.v, [&](std::size_t i, double) { near.push_back(samples[i].inverse_depth); });
     point.inverse_depth = near.empty() ? fallback : median(near);
     point.inverse_depth_variance = std::pow((near.empty() ? 1.0 : 0.5) * point.inverse_depth, 2);
     point.observations = 0;
