@@ -113,9 +113,11 @@ class TrackingNodelet : public nodelet::Nodelet {
         const auto recent = stamps_.find(index);
         return recent != stamps_.end() ? recent->second.header.stamp : ros::Time();
       };
+      OdometryOptions options = options_;
+      options.road.road_classes = roadClassBits(frame->class_names);  // the intake's table: Canny's has no road
       odometry_ = std::make_unique<Odometry>(
-          options_, camera_, mapping_mode_,
-          std::make_shared<NodeletMappingLink>(getNodeHandle(), options_, camera_, stamp_of, &class_names_, &tracer_));
+          options, camera_, mapping_mode_,
+          std::make_shared<NodeletMappingLink>(getNodeHandle(), options, camera_, stamp_of, &class_names_, &tracer_));
       stamps_.clear();
       frame_count_ = 0;
     }
@@ -187,8 +189,11 @@ class TrackingNodelet : public nodelet::Nodelet {
     auto status = boost::make_shared<TrackingStatus>();
     status->header = header;
     status->class_map_age = class_map_age;
-    status->scale_is_arbitrary = true;
+    const ScaleState scale = pose ? pose->scale : odometry_ ? odometry_->scaleState() : ScaleState::kArbitrary;
+    status->scale_is_arbitrary = scale == ScaleState::kArbitrary;
+    status->scale_state = toString(scale);
     if (pose) {
+      status->scale_confidence = static_cast<float>(pose->scale_confidence);
       status->state = pose->state == OdometryState::kTracking ? (pose->recovered ? TrackingStatus::RECOVERED : TrackingStatus::TRACKING)
                       : pose->state == OdometryState::kLost      ? TrackingStatus::LOST
                       : pose->state == OdometryState::kUntrusted ? TrackingStatus::UNTRUSTED

@@ -38,6 +38,7 @@ const char* const kUsage = R"(usage: evaluate_trajectory GT EST [options]
   --discard N        paper ATE: poses discarded at the start (default 10)
   --segment-frames N paper ATE: frames per Sim(3)-aligned segment (default 200)
   --rpe-delta N      RPE frame delta (default 1)
+  --end-frames N     the scale at the end is measured over the last N poses (default 100)
   --first-frame N    evaluate the pairs from ground-truth frame N on (default 0: all); e.g. 12 for
                      KITTI 06, whose first 12 ground-truth poses are extrapolated, not measured
   --keyframes FILE   the estimate's keyframes: run_sequence's timing.txt, or one frame number a line;
@@ -81,6 +82,7 @@ std::string parseArguments(int argc, char** argv, Arguments* args) {
     else if (flag == "--discard") error = sevo::parseNumber(flag, value, &args->options.paper_ate.discard_first_poses);
     else if (flag == "--segment-frames") error = sevo::parseNumber(flag, value, &args->options.paper_ate.segment_frames);
     else if (flag == "--rpe-delta") error = sevo::parseNumber(flag, value, &args->options.rpe_delta_frames);
+    else if (flag == "--end-frames") error = sevo::parseNumber(flag, value, &args->options.end_frames);
     else if (flag == "--first-frame") {
       error = sevo::parseNumber(flag, value, &args->first_frame);
       if (error.empty() && args->first_frame < 0) error = "--first-frame takes a frame index >= 0 (got '" + value + "')";

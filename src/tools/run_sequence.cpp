@@ -27,10 +27,11 @@ namespace {
 
 struct Arguments {
   std::string sequence, output, field, intake, segmenter_model, config;  ///< field, intake: empty = config's
-  std::string frames_text, latency_text, rate_text;
+  std::string frames_text, latency_text, rate_text, camera_height_text;
   int frames = 0;  ///< 0: all
   int class_map_latency = 0;  ///< 0: every frame has its own class map
   double rate = 0.0;          ///< frames a second at most (a camera's rate); 0: as fast as it can
+  double camera_height = 0.0; ///< m above the road (metric scale); 0: the config's
   bool quiet = false;
   bool parallel = false;  ///< mapping on its own thread (the live default) instead of after each frame
 };
@@ -40,7 +41,8 @@ std::string parse(int argc, char** argv, Arguments* args) {
                                        {{"--sequence", &args->sequence}, {"--output", &args->output}, {"--field", &args->field},
                                         {"--intake", &args->intake}, {"--segmenter-model", &args->segmenter_model},
                                         {"--config", &args->config}, {"--frames", &args->frames_text},
-                                        {"--class-map-latency", &args->latency_text}, {"--rate", &args->rate_text}},
+                                        {"--class-map-latency", &args->latency_text}, {"--rate", &args->rate_text},
+                                        {"--camera-height", &args->camera_height_text}},
                                        {{"--quiet", &args->quiet}, {"--parallel", &args->parallel}});
   if (!error.empty()) return error;
   if (const std::string bad = parseNumber("--frames", args->frames_text, &args->frames); !bad.empty()) return bad;
@@ -49,6 +51,8 @@ std::string parse(int argc, char** argv, Arguments* args) {
   if (args->class_map_latency < 0) return "--class-map-latency takes a frame count >= 0";
   if (const std::string bad = parseNumber("--rate", args->rate_text, &args->rate); !bad.empty()) return bad;
   if (args->rate < 0.0) return "--rate takes frames a second >= 0 (0: as fast as it can)";
+  if (const std::string bad = parseNumber("--camera-height", args->camera_height_text, &args->camera_height); !bad.empty()) return bad;
+  if (!args->camera_height_text.empty() && !(args->camera_height > 0.0)) return "--camera-height takes metres > 0";
   if (args->sequence.empty() || args->output.empty()) return "--sequence DIR and --output OUT are required";
   return {};
 }
@@ -70,15 +74,16 @@ std::string applyFlags(const Arguments& args, GraphConfig* options) {
       return "--field must be snnf, onnf, annf or none (got '" + args.field + "')";
   }
   if (!args.segmenter_model.empty()) options->segmenter.model_path = args.segmenter_model;
+  if (args.camera_height > 0.0) options->odometry.road.camera_height = args.camera_height;
   options->summary += "\n  command line: intake " + args.intake + ", field " + args.field + ", segmenter model " +
-                      args.segmenter_model + " (empty: as above)";
+                      args.segmenter_model + ", camera height " + args.camera_height_text + " (empty: as above)";
   std::string error = options->frame.validate();
   return error.empty() ? options->odometry.validate() : error;
 }
 
 const char* const kUsage = R"(usage: run_sequence --sequence DIR --output OUT [--field snnf|onnf|annf|none]
            [--intake canny|fused|semantic_edges] [--segmenter-model PATH] [--config FILE] [--frames N]
-           [--class-map-latency N] [--parallel] [--rate HZ] [--quiet]
+           [--class-map-latency N] [--parallel] [--rate HZ] [--camera-height METRES] [--quiet]
 Runs the odometry offline on a KITTI odometry folder (image_0/, calib.txt, times.txt) or a synthetic
 sequence, frames as fast as it can, deterministically: mapping runs after each frame (the
 config's tracking/mapping_mode is the live graph's). --parallel runs mapping on its own thread, as
@@ -96,6 +101,9 @@ semantic_edges intakes): only every Nth frame's class map is made, each is ready
 every frame uses the newest ready map carried to it by the optical flow (as the EdgeIntake nodelet
 does with class_maps: newest); frames before the first map get Canny edges of no class.
 timing.txt's class_map_age column gives each frame's map age in frames (-1: none).
+--camera-height METRES (the camera's optical centre above the road; KITTI: 1.65) puts the odometry in
+metres: the road under each keyframe (road-class points, or with the Canny intake the points in the
+lane ahead) holds its scale; timing.txt's scale and scale_confidence columns say where it was measured.
 )";
 
 /// What a run produced: the poses in frame order and its times.
@@ -155,7 +163,9 @@ std::string runFrames(const GraphConfig& options, SequenceInput& input, int fram
   const int class_map_latency = args.class_map_latency;
   ReplayedSegmenter segmenter(options.frame.intake.mode == IntakeMode::kCanny ? 0 : class_map_latency, options.intake_stream.class_carry);
   const FrameBuilder builder(options.frame, input.camera(), options.classes.names());
-  Odometry odometry(options.odometry, input.camera(), mapping);
+  OdometryOptions odometry_options = options.odometry;
+  odometry_options.road.road_classes = roadClassBits(builder.classNames());
+  Odometry odometry(odometry_options, input.camera(), mapping);
   // In parallel mode a frame's pose is returned before mapping decides whether it becomes a keyframe.
   std::set<int> keyframe_frames;
   const auto takeKeyframes = [&odometry, &keyframe_frames] {
@@ -216,7 +226,7 @@ struct RunCounts {
 std::string writeOutputs(const std::string& output, const RunRecord& record, const std::string& parameters, RunCounts* counts) {
   Trajectory trajectory;
   std::ostringstream timing;
-  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe guess inlier_ratio motion_deviation keyframe_scale class_map_age\n";
+  timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe guess inlier_ratio motion_deviation keyframe_scale class_map_age scale scale_confidence\n";
   for (const FramePose& pose : record.poses) {
     trajectory.poses.push_back(pose.T_world_cam);
     trajectory.stamps.push_back(pose.time);
@@ -226,7 +236,7 @@ std::string writeOutputs(const std::string& output, const RunRecord& record, con
     timing << pose.index << ' ' << record.segmenter_ms[i] << ' ' << record.intake_ms[i] << ' ' << pose.tracking_ms << ' ' << pose.mapping_ms
            << ' ' << total << ' ' << pose.window_ms << ' ' << pose.tracking.iterations << ' ' << pose.trusted << ' ' << toString(pose.state) << ' ' << pose.keyframe
            << ' ' << pose.tracking.guess << ' ' << pose.tracking.inlierRatio() << ' ' << pose.motion_deviation << ' ' << pose.keyframe_scale
-           << ' ' << record.class_map_age[i] << '\n';
+           << ' ' << record.class_map_age[i] << ' ' << toString(pose.scale) << ' ' << pose.scale_confidence << '\n';
     counts->trusted += pose.trusted;
     counts->keyframes += pose.keyframe;
     counts->lost += pose.state == OdometryState::kLost;

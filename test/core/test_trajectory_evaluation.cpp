@@ -218,6 +218,33 @@ TEST(TrajectoryEvaluation, PaperSegmentsAbsorbAPiecewiseSimilarity) {
   EXPECT_GT(e.sim3_ate.error_m.rmse, 10.0);
 }
 
+TEST(TrajectoryEvaluation, PaperProtocolAsStatedTakesEachSegmentsScaleButKeepsItsDrift) {
+  // The truth's motion at a scale of its own in each 200-frame segment: chained with the segments'
+  // scales it is the truth again. A heading that turns away by 2 degrees per segment stays in it.
+  Poses gt;
+  for (int i = 0; i < 610; ++i) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = Eigen::Vector3d(30.0 * std::sin(0.01 * i), 0.0, 1.0 * i);
+    gt.push_back(pose);
+  }
+  const auto scaleOf = [](std::size_t i) { return i < 210 ? 0.5 : i < 410 ? 2.0 : 1.5; };
+  const auto chain = [&gt, &scaleOf](double turn_deg_per_segment) {
+    Poses est = gt;
+    for (std::size_t i = 1; i < gt.size(); ++i) {
+      const double turn = turn_deg_per_segment * kDeg * static_cast<double>(i) / 200.0;
+      est[i].translation() = est[i - 1].translation() +
+                             scaleOf(i) * (rotationAbout({0, 1, 0}, turn) * (gt[i].translation() - gt[i - 1].translation()));
+    }
+    return est;
+  };
+  const TrajectoryEvaluation exact = evaluate(gt, chain(0.0));
+  ASSERT_EQ(exact.paper_ate_unavailable, "");
+  EXPECT_LT(exact.paper_chained_ate.error_m.rmse, 1e-6);
+  EXPECT_EQ(exact.paper_chained_ate.error_m.count, 600u);
+  const TrajectoryEvaluation turning = evaluate(gt, chain(2.0));
+  EXPECT_GT(turning.paper_chained_ate.error_m.rmse, 3.0 * turning.paper_ate.error_m.rmse) << "per-segment alignment hides drift";
+}
+
 TEST(TrajectoryEvaluation, ShortSequencesSayWhatIsNotAvailable) {
   const Poses gt = straightLine(12, 1.0);  // 11 m
   const TrajectoryEvaluation e = evaluate(gt, gt);
@@ -322,6 +349,20 @@ TEST(TrajectoryEvaluation, ConstantScaleErrorGivesKittiDriftOfScaleMinusOne) {
   const TrajectoryEvaluation e = evaluate(gt, scaledTranslations(gt, s));
   EXPECT_NEAR(e.drift_as_given.translation_percent, drift.translation_percent, 1e-12);
   EXPECT_LT(e.drift_sim3_scale.translation_percent, 1e-9);
+  // The scale as it is, whole path and end.
+  EXPECT_NEAR(e.path_scale, s, 1e-9);
+  EXPECT_NEAR(e.end_scale, s, 1e-9);
+}
+
+TEST(TrajectoryEvaluation, TheScaleAtTheEndIsTheLastPosesTravel) {
+  // Metres for 900 frames, then 10 % short: the whole path's scale is a mix, the end's the last.
+  const Poses gt = straightLine(1000, 1.0);
+  Poses est = gt;
+  for (std::size_t i = 901; i < est.size(); ++i)
+    est[i].translation() = est[i - 1].translation() + 0.9 * (gt[i].translation() - gt[i - 1].translation());
+  const TrajectoryEvaluation e = evaluate(gt, est);
+  EXPECT_NEAR(e.end_scale, 0.9, 1e-9);
+  EXPECT_GT(e.path_scale, 0.98);
 }
 
 TEST(TrajectoryEvaluation, ConstantScaleErrorOnKitti00And06) {

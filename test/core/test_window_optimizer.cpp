@@ -53,25 +53,48 @@ MotionError motionError(const std::deque<std::shared_ptr<Keyframe>>& window, con
   return {rotationDegrees(estimated, expected), std::acos(std::min(1.0, cosine)) * 180.0 / M_PI};
 }
 
-TEST(WindowOptimizer, PullsAKeyframeMovedOffBackToTheTruth) {
+/// Four keyframes of the synthetic city drive (every third frame from frame 10, about 1.8 m apart)
+/// at their true poses, their points at their true depths.
+std::deque<std::shared_ptr<Keyframe>> cityWindow(std::vector<Eigen::Isometry3d>* truth) {
   synthetic::SyntheticSequence sequence(synthetic::SyntheticSequenceOptions::forScene(synthetic::SceneType::kCity, 1));
   const FrameBuilder builder(FrameBuilderOptions{}, sequence.camera(), ClassTable::cityscapes().names());
   std::deque<std::shared_ptr<Keyframe>> window;
-  std::vector<Eigen::Isometry3d> truth;
-  for (int k = 0; k < 4; ++k) {  // a keyframe every third frame, about 1.8 m apart
+  for (int k = 0; k < 4; ++k) {
     const synthetic::SyntheticFrame frame = sequence.frame(10 + 3 * k);
     ExtractionError error;
     auto keyframe = std::make_shared<Keyframe>();
     keyframe->id = k;
     keyframe->T_world_cam = frame.T_world_cam;
     keyframe->frame = builder.build(k, frame.time, frame.gray, ClassEvidence{}, &error);
-    ASSERT_FALSE(error) << error.reason;
-    ASSERT_TRUE(keyframe->frame->has_field);
+    EXPECT_FALSE(error) << error.reason;
+    EXPECT_TRUE(keyframe->frame->has_field);
     keyframe->points = pointsWithTrueDepths(keyframe->frame->candidates, frame.depth, frame.dynamic);
-    ASSERT_GT(keyframe->points.size(), 1000u);
-    truth.push_back(frame.T_world_cam);
+    EXPECT_GT(keyframe->points.size(), 1000u);
+    truth->push_back(frame.T_world_cam);
     window.push_back(keyframe);
   }
+  return window;
+}
+
+/// The window at `scale` times its size: positions about the oldest keyframe, and depths.
+void rescale(double scale, std::deque<std::shared_ptr<Keyframe>>* window) {
+  const Eigen::Vector3d about = window->front()->T_world_cam.translation();
+  for (const auto& keyframe : *window) {
+    keyframe->T_world_cam.translation() = about + scale * (keyframe->T_world_cam.translation() - about);
+    for (MapPoint& point : keyframe->points) point.inverse_depth /= scale;
+  }
+}
+
+/// The window's travel over the true travel.
+double travelRatio(const std::deque<std::shared_ptr<Keyframe>>& window, const std::vector<Eigen::Isometry3d>& truth) {
+  return (window.back()->T_world_cam.translation() - window.front()->T_world_cam.translation()).norm() /
+         (truth.back().translation() - truth.front().translation()).norm();
+}
+
+TEST(WindowOptimizer, PullsAKeyframeMovedOffBackToTheTruth) {
+  std::vector<Eigen::Isometry3d> truth;
+  std::deque<std::shared_ptr<Keyframe>> window = cityWindow(&truth);
+  ASSERT_EQ(window.size(), 4u);
   // The newest keyframe off by about what tracking leaves: 1.8 cm (0.45 degrees of its travel's
   // direction) and 0.11 degrees.
   Vector6d off;
@@ -100,6 +123,50 @@ TEST(WindowOptimizer, PullsAKeyframeMovedOffBackToTheTruth) {
     EXPECT_LT(error.rotation_deg, 0.05) << "keyframe " << k;
     EXPECT_LT(error.direction_deg, 0.35) << "keyframe " << k;
   }
+}
+
+TEST(WindowOptimizer, TheRoadPullsAWindowAtTheWrongScaleTowardsMetres) {
+  std::vector<Eigen::Isometry3d> truth;
+  std::deque<std::shared_ptr<Keyframe>> window = cityWindow(&truth);
+  ASSERT_EQ(window.size(), 4u);
+  rescale(1.1, &window);  // 10 % too large: within max_height_change, a drift the road corrects
+  RoadScaleOptions road;  // without classes: the lane ahead (Canny edges have none)
+  road.camera_height = 1.65;
+  WindowOptimizerOptions options;
+  options.keyframes = 4;
+  std::vector<double> travel;
+  for (int solve = 0; solve < 10; ++solve) {  // as the window runs again at the next keyframes
+    const WindowOptimizerResult result = WindowOptimizer(options, road).optimize(window);
+    ASSERT_TRUE(result.solved);
+    EXPECT_GE(result.road_keyframes, 3);
+    EXPECT_LT(std::abs(std::log(result.scale_step)), 0.03) << "one solve moves the scale a little: never a jump";
+    travel.push_back(travelRatio(window, truth));
+  }
+  std::printf("travel over the true travel after each solve, from 1.1:");
+  for (double ratio : travel) std::printf(" %.3f", ratio);
+  std::printf("\n");
+  EXPECT_LT(std::abs(travel.back() - 1.0), 0.3 * 0.1);
+  for (std::size_t i = 1; i < travel.size(); ++i) EXPECT_LE(std::abs(travel[i] - 1.0), std::abs(travel[i - 1] - 1.0) + 0.002);
+}
+
+TEST(WindowOptimizer, AWindowWithoutRoadIsSolvedAsWithoutACameraHeight) {
+  std::vector<Eigen::Isometry3d> truth;
+  std::deque<std::shared_ptr<Keyframe>> window = cityWindow(&truth);
+  ASSERT_EQ(window.size(), 4u);
+  rescale(1.1, &window);
+  std::deque<std::shared_ptr<Keyframe>> copy;
+  for (const auto& keyframe : window) copy.push_back(std::make_shared<Keyframe>(*keyframe));
+  RoadScaleOptions road;
+  road.camera_height = 1.65;
+  road.road_classes = 1u << 5;  // a class no point has: no road in view
+  WindowOptimizerOptions options;
+  options.keyframes = 4;
+  const WindowOptimizerResult result = WindowOptimizer(options, road).optimize(window);
+  ASSERT_TRUE(WindowOptimizer(options).optimize(copy).solved);
+  EXPECT_EQ(result.road_keyframes, 0);
+  EXPECT_EQ(result.scale_step, 1.0);
+  for (std::size_t k = 0; k < window.size(); ++k)  // the scale held, not guessed
+    EXPECT_TRUE(window[k]->T_world_cam.isApprox(copy[k]->T_world_cam, 1e-12)) << "keyframe " << k;
 }
 
 }  // namespace

@@ -29,4 +29,14 @@ struct Keyframe {
   std::shared_ptr<const SharedClassEdgeTest> edge_test;
 };
 
+/// The keyframe as part of a map scaled by `scale` about the world point `about`: its position and
+/// its points' depths (and their variances).
+inline void scaleAbout(double scale, const Eigen::Vector3d& about, Keyframe* keyframe) {
+  keyframe->T_world_cam.translation() = about + scale * (keyframe->T_world_cam.translation() - about);
+  for (MapPoint& point : keyframe->points) {
+    point.inverse_depth /= scale;
+    point.inverse_depth_variance /= scale * scale;
+  }
+}
+
 }  // namespace semantic_edge_vo

@@ -60,6 +60,13 @@ struct MappingOutcome {
   /// The window's keyframe poses afterwards, by id: where tracking's keyframes are now.
   std::map<int, Eigen::Isometry3d> keyframe_poses;
   std::shared_ptr<const KeyframeWindow> window;  ///< the window after a new keyframe or a new map (else null)
+  /// Metric scale (a camera height): the keyframes of the window it solved, and how many of them
+  /// had their road plane found.
+  int window_keyframes = 0, road_keyframes = 0;
+  /// The first road a map showed set its scale: the map was scaled by this about `rescaled_about`
+  /// (the new keyframe's tracked position) before the window ran; 1: not rescaled.
+  double map_rescale = 1.0;
+  Eigen::Vector3d rescaled_about = Eigen::Vector3d::Zero();
   double mapping_ms = 0.0;  ///< all of it, the windowed optimisation included
   double window_ms = 0.0;   ///< the windowed optimisation
 };
@@ -111,6 +118,10 @@ class Mapper {
   /// class reliability gives its classes.
   void takeCandidates(Keyframe* keyframe) const;
   void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);
+  /// With a camera height, until a map's scale is measured: when the road is found under
+  /// kMinRoadKeyframes of its keyframes whose planes agree (max_height_change), scales the map to
+  /// metres about `about` (the median of those planes' heights). Returns the scale applied (1: none).
+  double measureMapScale(const Eigen::Vector3d& about);
 
   OdometryOptions options_;
   PinholeCamera camera_;
@@ -123,6 +134,8 @@ class Mapper {
   int next_keyframe_id_ = 0;
   int frames_since_keyframe_ = 0;
   int keyframes_left_ = 0;  ///< keyframes that have left the window
+  bool scale_measured_ = false;  ///< the map's scale was set from the road (camera height given)
+  static constexpr int kMinRoadKeyframes = 3;
   /// The allocator gives its free pages back to the system each time this many more have left it.
   static constexpr int kKeyframesBetweenTrims = 20;
   std::function<void(MappingOutcome)> on_provisional_;

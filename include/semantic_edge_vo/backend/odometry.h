@@ -24,6 +24,14 @@ enum class OdometryState {
 };
 const char* toString(OdometryState state);
 
+/// Where the map's scale comes from.
+enum class ScaleState {
+  kArbitrary,  ///< no camera height, or no road seen yet: monocular, up to an unknown scale
+  kMeasured,   ///< the newest window found the road under a keyframe: metres, measured
+  kHeld,       ///< metres, but the newest window found no road (or a new map after a loss has not yet): carried on from before
+};
+const char* toString(ScaleState state);
+
 /// The pose of one frame, final once returned (in parallel mode: as tracked; see Odometry::process).
 struct FramePose {
   int index = 0;
@@ -45,6 +53,9 @@ struct FramePose {
   /// On the caller's thread (mapping: depths, keyframe, the windowed optimisation; 0 in parallel mode).
   double tracking_ms = 0.0, mapping_ms = 0.0;
   double window_ms = 0.0;  ///< the windowed optimisation (part of mapping_ms)
+  ScaleState scale = ScaleState::kArbitrary;
+  /// The fraction of the newest window's keyframes whose road plane was found (0 without a camera height).
+  double scale_confidence = 0.0;
 };
 
 /// Monocular semantic edge odometry: initialisation, frame-to-keyframe tracking (photometric + edge
@@ -64,6 +75,7 @@ class Odometry {
   /// parallel mode a pose is returned as tracked: whether its frame becomes a keyframe (and how the
   /// window moves it) is decided later, and shows in takeNewWindows() and the poses after it.
   std::vector<FramePose> process(const std::shared_ptr<const OdometryFrame>& frame);
+  ScaleState scaleState() const { return scale_; }
   /// Forgets the map: the next frame starts a new initialisation, as after a loss (the new map
   /// begins where the odometry predicts that frame, at the old map's scale: odom stays continuous),
   /// but without trying the old map first. While initialising it only stops those tries.
@@ -85,6 +97,9 @@ class Odometry {
   const std::shared_ptr<const Keyframe>& activeKeyframe() const { return keyframe_; }
 
  private:
+  std::vector<FramePose> processFrame(const std::shared_ptr<const OdometryFrame>& frame);
+  /// The scale state after a keyframe's window (or a new map).
+  void noteScale(const MappingOutcome& outcome);
   /// `start`: when the frame's processing began (its time is the waiting frame's).
   std::vector<FramePose> initialize(const std::shared_ptr<const OdometryFrame>& frame, std::chrono::steady_clock::time_point start);
   void startInitialization(const std::shared_ptr<const OdometryFrame>& frame);
@@ -153,6 +168,9 @@ class Odometry {
   static constexpr std::size_t kRecentInlierRatios = 10;
   double last_inlier_ratio_ = 1.0;  ///< photometric inlier ratio of the last tracked frame (1: none)
   int untrusted_in_a_row_ = 0;      ///< frames tracked but not trusted since the last trusted one
+  ScaleState scale_ = ScaleState::kArbitrary;
+  double scale_confidence_ = 0.0;
+  bool map_scale_measured_ = false;  ///< the road set a map's scale once: metres since, measured or held
   /// Parallel mode: the last frame whose flow asked for a new keyframe, until mapping made it (-1: none).
   int keyframe_asked_by_ = -1;
 };

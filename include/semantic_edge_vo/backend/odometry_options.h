@@ -3,6 +3,7 @@
 
 #include "semantic_edge_vo/backend/epipolar_depth.h"
 #include "semantic_edge_vo/backend/keyframe_motion.h"
+#include "semantic_edge_vo/backend/road_plane.h"
 #include "semantic_edge_vo/backend/two_view_initializer.h"
 #include "semantic_edge_vo/backend/window_optimizer.h"
 #include "semantic_edge_vo/frontend/class_reliability.h"
@@ -32,6 +33,10 @@ struct OdometryOptions {
   KeyframeMotionOptions keyframe_motion;
   ClassReliabilityOptions class_reliability;
   FrameConsistencyOptions consistency;
+  /// Metric scale from the road (camera_height > 0): the first keyframe's depths in metres, then
+  /// each window holds the keyframes' road points at the camera's height. The caller sets
+  /// road.road_classes from its class table (roadClassBits).
+  RoadScaleOptions road;
   bool optimize_window = true;         ///< run the windowed optimisation at each new keyframe
   double keyframe_flow = 60.0;         ///< new keyframe when the keyframe points moved this much on average, px
   double keyframe_min_in_view = 0.6;   ///< ... or fewer of them are in view (fraction)

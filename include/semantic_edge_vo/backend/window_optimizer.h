@@ -6,6 +6,7 @@
 #include "semantic_edge_vo/backend/factors/observation_weights.h"
 #include "semantic_edge_vo/frontend/forward_motion_prior.h"
 #include "semantic_edge_vo/backend/keyframe.h"
+#include "semantic_edge_vo/backend/road_plane.h"
 
 namespace semantic_edge_vo {
 
@@ -43,6 +44,11 @@ struct WindowOptimizerResult {
   int keyframes = 0, points = 0, photometric_residuals = 0, edge_residuals = 0;
   double initial_cost = 0.0, final_cost = 0.0;
   bool solved = false;
+  /// Metric scale (RoadScaleOptions::enabled): keyframes whose road plane was found, the camera
+  /// height over the newest such plane's height before the solve (how far the map's scale was from
+  /// metres there; 0: no plane found), and the scale the window took towards the road (1: held).
+  int road_keyframes = 0;
+  double height_ratio = 0.0, scale_step = 1.0;
 };
 
 /// Windowed optimisation of keyframe poses and point inverse depths with Ceres (paper III-C):
@@ -51,14 +57,21 @@ struct WindowOptimizerResult {
 /// (smaller weight than in tracking), and a prior on each inverse depth at its filtered estimate and
 /// sigma, priors on the motion between consecutive keyframes (forward travel; measured rotation and
 /// direction). The oldest keyframe of the window is held fixed (gauge).
+/// With a camera height, the road under each keyframe (RoadPlaneFinder) measures the map's scale
+/// there, and the window's cost has a term for each such measurement and a prior on the change of
+/// scale in one solve (RoadScaleOptions::height_sigma, scale_sigma). Every other term is unchanged
+/// by scaling the window about its held keyframe (positions and depths together), and the solver's
+/// damped steps do not find that direction: so the cost is first minimised along it, in closed
+/// form, then the rest is solved.
 class WindowOptimizer {
  public:
-  explicit WindowOptimizer(const WindowOptimizerOptions& options) : options_(options) {}
+  WindowOptimizer(const WindowOptimizerOptions& options, const RoadScaleOptions& road = {}) : options_(options), road_(road) {}
   /// Optimises the newest keyframes of `window` in place.
   WindowOptimizerResult optimize(const std::deque<std::shared_ptr<Keyframe>>& window) const;
 
  private:
   WindowOptimizerOptions options_;
+  RoadScaleOptions road_;
 };
 
 }  // namespace semantic_edge_vo

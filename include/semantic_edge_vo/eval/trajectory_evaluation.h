@@ -69,6 +69,12 @@ struct SegmentedAteResult {
 std::string segmentedAte(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est,
                          const AteProtocolOptions& options, SegmentedAteResult* result);
 
+/// The paper's protocol as it states it: after the discarded poses, the estimate's motion in each
+/// segment of `segments` is multiplied by that segment's ground-truth (Sim(3)) scale, the motions are
+/// chained from the first kept pose into one trajectory, and that is aligned once (SE(3)).
+std::string chainedSegmentAte(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est,
+                              const SegmentedAteResult& segments, AteResult* result);
+
 /// Relative pose error of the motions over `delta_frames`: E = (gt_i^-1 gt_j)^-1 (est_i^-1 est_j)
 /// with j = i + delta, the estimated translations multiplied by `est_scale` first.
 struct RpeResult {
@@ -134,6 +140,11 @@ std::vector<Eigen::Vector3d> positionsOf(const std::vector<Eigen::Isometry3d>& p
 
 /// Length of the path through the positions, metres.
 double pathLength(const std::vector<Eigen::Vector3d>& positions);
+
+/// The estimate's scale as it is (no alignment): its travel over the true travel from pair `first`
+/// to the last, both measured over steps of `step` pairs (frame-to-frame jitter left out); 0 when
+/// the truth does not move.
+double travelScale(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est, std::size_t first, std::size_t step);
 
 /// Distances of the positions from the constant-speed straight line closest to them (least squares
 /// in a + b k, k = each position's frame number), metres: what a motion model without vision scores

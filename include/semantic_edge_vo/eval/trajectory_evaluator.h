@@ -13,6 +13,7 @@ struct TrajectoryEvaluationOptions {
   KittiDriftOptions kitti_drift;
   double min_gt_translation_m = 0.05;  ///< frame-to-frame directions need this much true motion, metres
   double min_keyframe_travel_m = 0.2;  ///< keyframe intervals need this much true travel for their scale, metres
+  int end_frames = 100;                ///< the scale at the end is measured over this many last pairs (all when fewer)
 
   std::string validate() const;
 };
@@ -25,14 +26,18 @@ struct TrajectoryEvaluation {
   AteResult sim3_ate;        ///< whole trajectory, Umeyama Sim(3)
   AteResult se3_ate;         ///< whole trajectory, Umeyama SE(3)
   ErrorStatistics straight_line_m;  ///< the ground truth against its closest constant-speed straight line (reference)
-  SegmentedAteResult paper_ate;
-  std::string paper_ate_unavailable;
+  SegmentedAteResult paper_ate;       ///< the paper's protocol, each segment Sim(3)-aligned on its own
+  AteResult paper_chained_ate;        ///< the paper's protocol as stated: segments' scales, chained, one SE(3) alignment
+  std::string paper_ate_unavailable;  ///< of both
   RpeResult rpe;  ///< estimated translations scaled by the Sim(3) scale
   std::string rpe_unavailable;
   KittiDriftResult drift_as_given;    ///< estimate as it is (the devkit, for metric estimates)
   KittiDriftResult drift_sim3_scale;  ///< estimated translations scaled by the Sim(3) scale (monocular)
   std::string drift_unavailable;
   FrameToFrameErrors frame_to_frame;
+  /// The estimate's scale as it is (1: metres; travelScale over steps of 10 pairs): over the whole
+  /// path and over the last end_frames pairs.
+  double path_scale = 0.0, end_scale = 0.0;
   KeyframeScaleChanges keyframe_scale;  ///< with the estimate's keyframes
   std::string keyframe_scale_unavailable;
 };

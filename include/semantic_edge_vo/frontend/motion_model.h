@@ -31,6 +31,9 @@ class MotionModel {
                 const Eigen::Isometry3d& window_correction = Eigen::Isometry3d::Identity());
   /// Moves the last two poses with a correction of the map (the windowed optimisation's).
   void correct(const Eigen::Isometry3d& correction);
+  /// Scales the last two poses' positions about `about` and the driving travel by `scale` (the map
+  /// was rescaled about that point).
+  void rescale(double scale, const Eigen::Vector3d& about);
   /// Forgets the driving travel (it was at another map's scale).
   void forgetDrivingMotions() { driving_motions_.clear(); }
 

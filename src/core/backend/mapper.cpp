@@ -18,7 +18,7 @@ Mapper::Mapper(const OdometryOptions& options, const PinholeCamera& camera)
     : options_(options),
       camera_(camera),
       depths_(options.epipolar, camera, options.depth_neighbour_radius, 1.0 / options.initializer.median_depth),
-      window_optimizer_(options.window_optimizer),
+      window_optimizer_(options.window_optimizer, options.road),
       keyframe_motion_(options.keyframe_motion, camera),
       class_reliability_(options.class_reliability) {}
 
@@ -43,6 +43,7 @@ void Mapper::startMap(const MappingRequest& request) {
   keyframes_.push_back(keyframe);
   setActiveKeyframe(keyframe);
   frames_since_keyframe_ = 0;
+  scale_measured_ = false;
 }
 
 MappingOutcome Mapper::map(const MappingRequest& request) {
@@ -161,10 +162,14 @@ void Mapper::makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d
     keyframes_.pop_front();
     if (++keyframes_left_ % kKeyframesBetweenTrims == 0) releaseFreedMemory();  // frames freed between bursts
   }
+  outcome->rescaled_about = T_world_cam.translation();
+  outcome->map_rescale = measureMapScale(outcome->rescaled_about);
   if (options_.optimize_window) {
     const auto start = std::chrono::steady_clock::now();
-    window_optimizer_.optimize(keyframes_);
+    const WindowOptimizerResult solved = window_optimizer_.optimize(keyframes_);
     outcome->window_ms = elapsedMs(start);
+    outcome->window_keyframes = solved.keyframes;
+    outcome->road_keyframes = solved.road_keyframes;
   }
   triangulatePoints(keyframe.get(), *active_);
   setActiveKeyframe(keyframe);
@@ -185,6 +190,27 @@ void Mapper::takeCandidates(Keyframe* keyframe) const {
   const int all_edges_layer = keyframe->frame->has_field ? keyframe->frame->field.all_edges_layer : -1;
   for (MapPoint& point : keyframe->points)
     if (point.isEdge()) point.field_layers = class_reliability_.fieldLayers(point.class_mask, all_edges_layer);
+}
+
+double Mapper::measureMapScale(const Eigen::Vector3d& about) {
+  if (!options_.road.enabled() || scale_measured_) return 1.0;
+  const RoadPlaneFinder finder(options_.road, camera_);
+  std::vector<double> heights;
+  for (const auto& keyframe : keyframes_) {
+    std::vector<int> offered;
+    const RoadFit fit = finder.fitPoints(keyframe->points, {}, &offered);
+    if (fit.found) heights.push_back(fit.height);
+  }
+  // One fit may be a kerb or a verge: the scale is set once kMinRoadKeyframes of them agree.
+  const double middle = median(heights);
+  std::vector<double> agreeing;
+  for (double height : heights)
+    if (std::abs(std::log(height / middle)) <= std::log1p(options_.road.max_height_change)) agreeing.push_back(height);
+  if (static_cast<int>(agreeing.size()) < kMinRoadKeyframes) return 1.0;
+  scale_measured_ = true;
+  const double scale = options_.road.camera_height / median(agreeing);
+  for (const auto& keyframe : keyframes_) scaleAbout(scale, about, keyframe.get());
+  return scale;
 }
 
 void Mapper::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {

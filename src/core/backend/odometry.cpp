@@ -34,6 +34,15 @@ const char* toString(OdometryState state) {
   return "unknown";
 }
 
+const char* toString(ScaleState state) {
+  switch (state) {
+    case ScaleState::kArbitrary: return "arbitrary";
+    case ScaleState::kMeasured: return "measured";
+    case ScaleState::kHeld: return "held";
+  }
+  return "unknown";
+}
+
 std::string OdometryOptions::validate() const {
   std::string error = tracker.validate();
   if (error.empty()) error = initializer.validate();
@@ -42,6 +51,7 @@ std::string OdometryOptions::validate() const {
   if (error.empty()) error = keyframe_motion.validate();
   if (error.empty()) error = class_reliability.validate();
   if (error.empty()) error = consistency.validate();
+  if (error.empty()) error = road.validate();
   if (error.empty() && !(keyframe_flow > 0 && keyframe_min_in_view >= 0 && keyframe_min_in_view <= 1))
     error = "keyframe_flow must be > 0 px and keyframe_min_in_view in [0, 1]";
   if (error.empty() && (keyframe_max_interval < 1 || window_size < 1 || !(depth_neighbour_radius > 0)))
@@ -68,6 +78,23 @@ Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera, 
       parallel_(mode == MappingMode::kParallel) {}
 
 std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFrame>& frame) {
+  std::vector<FramePose> poses = processFrame(frame);
+  for (FramePose& pose : poses) {
+    pose.scale = scale_;
+    pose.scale_confidence = scale_confidence_;
+  }
+  return poses;
+}
+
+void Odometry::noteScale(const MappingOutcome& outcome) {
+  if (!options_.road.enabled() || !outcome.keyframe) return;
+  if (outcome.map_rescale != 1.0) map_scale_measured_ = true;
+  if (!map_scale_measured_) return;  // arbitrary until the map's first road
+  scale_confidence_ = outcome.window_keyframes > 0 ? static_cast<double>(outcome.road_keyframes) / outcome.window_keyframes : 0.0;
+  scale_ = outcome.road_keyframes > 0 ? ScaleState::kMeasured : ScaleState::kHeld;
+}
+
+std::vector<FramePose> Odometry::processFrame(const std::shared_ptr<const OdometryFrame>& frame) {
   if (state_ != OdometryState::kTracking) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<FramePose> poses;
@@ -94,6 +121,7 @@ void Odometry::collectMapping() {
   int anchor_id = keyframe_ ? keyframe_->id : -1;
   Eigen::Isometry3d anchor_pose = keyframe_ ? keyframe_->T_world_cam : Eigen::Isometry3d::Identity();
   const MappingOutcome* newest = nullptr;
+  double rescale = 1.0;  // the map's scale was set meanwhile
   std::string error;
   const std::vector<MappingOutcome> outcomes = mapping_->takeOutcomes();
   for (const MappingOutcome& outcome : outcomes) {
@@ -101,6 +129,8 @@ void Odometry::collectMapping() {
     if (!outcome.error.empty()) error = outcome.error;
     if (outcome.stale || outcome.dropped) continue;
     newest = &outcome;
+    noteScale(outcome);
+    rescale *= outcome.map_rescale;
     if (outcome.keyframe) new_windows_.push_back(outcome.window);
     if (outcome.provisional && outcome.frame_index == motion_.lastStamp().index) {
       anchor_id = outcome.active->id;
@@ -110,7 +140,11 @@ void Odometry::collectMapping() {
   if (newest) {
     // Odom jumps once by this correction (docs/architecture.md); the velocity is kept.
     const auto moved = newest->keyframe_poses.find(anchor_id);
-    if (moved != newest->keyframe_poses.end()) motion_.correct(moved->second * anchor_pose.inverse());
+    if (moved != newest->keyframe_poses.end()) {
+      motion_.correct(moved->second * anchor_pose.inverse());
+      // The recent frames' motion from the keyframe they were tracked against, at the map's new scale.
+      if (rescale != 1.0) motion_.rescale(rescale, moved->second.translation());
+    }
     trackAgainst(newest->active);
   }
   if (!error.empty()) throw std::runtime_error("mapping dropped a frame it failed on: " + error);
@@ -129,6 +163,8 @@ MappingOutcome Odometry::mapNow(MappingRequest request) {
     if (outcome.frame_index == frame_index && !outcome.provisional) {
       if (!outcome.error.empty()) throw std::runtime_error("mapping failed on frame " + std::to_string(frame_index) + ": " + outcome.error);
       if (outcome.dropped) throw std::runtime_error("mapping dropped frame " + std::to_string(frame_index));
+      noteScale(outcome);
+      if (outcome.map_rescale != 1.0) motion_.rescale(outcome.map_rescale, outcome.rescaled_about);  // the last frame's pose, at the old scale
       return outcome;
     }
   throw std::runtime_error("mapping gave no outcome for frame " + std::to_string(frame_index));

@@ -116,6 +116,30 @@ std::vector<factors::Observation> observePoints(const WindowOptimizerOptions& op
   return found;
 }
 
+/// The window's scale toward the road (see WindowOptimizer): each keyframe whose road plane is
+/// found and agrees with metres measures log(camera height / plane height) with sigma
+/// height_sigma; the scale's change in one solve has the prior sigma scale_sigma. The minimum of
+/// those terms along the scale gauge, in closed form, is applied about the oldest keyframe (held).
+void scaleTowardTheRoad(const RoadScaleOptions& road, const std::deque<std::shared_ptr<Keyframe>>& window, std::size_t first,
+                        WindowOptimizerResult* result) {
+  const RoadPlaneFinder finder(road, window[first]->frame->pyramid->level(0).camera);
+  double measured = 0.0;  // sum of the keyframes' log scale errors
+  for (std::size_t k = first; k < window.size(); ++k) {
+    std::vector<int> offered;
+    const RoadFit fit = finder.fitPoints(window[k]->points, {}, &offered);
+    if (!fit.found || !finder.agreesWithMetres(fit.height)) continue;
+    result->height_ratio = road.camera_height / fit.height;
+    measured += std::log(result->height_ratio);
+    ++result->road_keyframes;
+  }
+  if (result->road_keyframes == 0) return;  // held
+  const double measurement_weight = 1.0 / (road.height_sigma * road.height_sigma), prior_weight = 1.0 / (road.scale_sigma * road.scale_sigma);
+  const double scale = std::exp(measured * measurement_weight / (result->road_keyframes * measurement_weight + prior_weight));
+  result->scale_step = scale;
+  const Eigen::Vector3d about = window[first]->T_world_cam.translation();
+  for (std::size_t k = first; k < window.size(); ++k) scaleAbout(scale, about, window[k].get());
+}
+
 /// Solves the window deterministically; true when the solution is usable and no worse than the start.
 bool solve(int max_iterations, ceres::Problem* problem, WindowOptimizerResult* result) {
   ceres::Solver::Options solver;
@@ -156,6 +180,7 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
   if (count < 2) return result;
   const std::size_t first = window.size() - count;
   result.keyframes = static_cast<int>(count);
+  if (road_.enabled()) scaleTowardTheRoad(road_, window, first, &result);
 
   std::vector<factors::PoseParameters> poses;
   std::vector<std::unique_ptr<ceres::Grid2D<float, 1>>> grids;

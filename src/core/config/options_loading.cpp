@@ -83,6 +83,22 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("consistency/max_motion_deviation", &consistency.max_motion_deviation, "(of the usual travel per frame)");
   loader->load("consistency/max_untrusted_frames", &consistency.max_untrusted_frames, "frames");
   loader->load("consistency/max_keyframe_scale_change", &consistency.max_keyframe_scale_change, "(fraction)");
+  RoadScaleOptions& road = options->road;
+  loader->load("camera_height", &road.camera_height, "m above the road (0: no metric scale)");
+  loader->load("road/pitch", &road.pitch_deg, "deg (+: camera looking down)");
+  loader->load("road/roll", &road.roll_deg, "deg (+: right side down)");
+  loader->load("road/max_normal_deviation", &road.max_normal_deviation_deg, "deg");
+  loader->load("road/min_ahead", &road.min_ahead, "camera heights");
+  loader->load("road/max_ahead", &road.max_ahead, "camera heights");
+  loader->load("road/half_width", &road.half_width, "camera heights");
+  loader->load("road/lane_half_width", &road.lane_half_width, "camera heights");
+  loader->load("road/inlier_band", &road.inlier_band, "(fraction of the height)");
+  loader->load("road/min_inliers", &road.min_inliers, "points");
+  loader->load("road/min_inlier_ratio", &road.min_inlier_ratio, "");
+  loader->load("road/ransac_iterations", &road.ransac_iterations, "iterations");
+  loader->load("road/height_sigma", &road.height_sigma, "(fraction, per keyframe)");
+  loader->load("road/scale_sigma", &road.scale_sigma, "(fraction, per keyframe)");
+  loader->load("road/max_height_change", &road.max_height_change, "(fraction of the height)");
   return options->validate();
 }
 

@@ -133,13 +133,19 @@ constexpr const char* kStraightLine = "reference: constant-speed straight line c
 void markdownAte(const TrajectoryEvaluation& e, const AteProtocolOptions& options, std::ostringstream& md) {
   md << "## Absolute trajectory error (camera positions, m)\n\n"
      << "| alignment | RMSE | mean | median | max | poses |\n|---|---:|---:|---:|---:|---:|\n";
-  const std::string paper = "paper: first " + std::to_string(options.discard_first_poses) +
-                            " poses discarded, Sim(3) per " + std::to_string(options.segment_frames) + " frames";
-  if (e.paper_ate_unavailable.empty()) md << statisticsRow(paper, e.paper_ate.error_m);
+  const std::string frames = std::to_string(options.segment_frames);
+  const std::string discarded = "first " + std::to_string(options.discard_first_poses) + " poses discarded";
+  const std::string paper = "paper: " + discarded + ", Sim(3) per " + frames + " frames",
+                    chained = "paper as stated: " + discarded + ", motion scaled per " + frames +
+                              " frames from ground truth, chained, one SE(3) alignment";
+  if (e.paper_ate_unavailable.empty())
+    md << statisticsRow(paper, e.paper_ate.error_m) << statisticsRow(chained, e.paper_chained_ate.error_m);
   else md << "| " << paper << " | not available: " << cell(e.paper_ate_unavailable) << " | | | | |\n";
+  const double se3_percent = e.gt_length_m > 0.0 ? 100.0 * e.se3_ate.error_m.rmse / e.gt_length_m : 0.0;
   md << statisticsRow("Sim(3) Umeyama, whole trajectory (scale " + figure(e.sim3_ate.alignment.scale) + ")",
                       e.sim3_ate.error_m)
-     << statisticsRow("SE(3) Umeyama, whole trajectory", e.se3_ate.error_m)
+     << statisticsRow("SE(3) Umeyama, whole trajectory: no scale from ground truth (RMSE " + figure(se3_percent) + " % of the path)",
+                      e.se3_ate.error_m)
      << (e.straight_line_m.count ? statisticsRow(kStraightLine, e.straight_line_m)
                                  : "| " + std::string(kStraightLine) + " | not available: one frame number | | | | |\n")
      << "\n";
@@ -185,6 +191,14 @@ void markdownDrift(const TrajectoryEvaluation& e, const KittiDriftOptions& optio
      << figure(e.drift_as_given.rotation_deg_per_100m) << "** |\n\n";
 }
 
+void markdownScale(const TrajectoryEvaluation& e, const TrajectoryEvaluationOptions& options, std::ostringstream& md) {
+  md << "## Scale as it is\n\nThe estimate's travel over the true travel, measured over steps of 10 poses, with no alignment "
+        "(1: metres, the figure of an estimate run with a camera height).\n\n| over | scale | error (%) |\n|---|---:|---:|\n"
+     << "| the whole path | " << figure(e.path_scale) << " | " << figure(100.0 * (e.path_scale - 1.0)) << " |\n"
+     << "| the last " << options.end_frames << " poses | " << figure(e.end_scale) << " | " << figure(100.0 * (e.end_scale - 1.0))
+     << " |\n\n";
+}
+
 void markdownKeyframeScale(const TrajectoryEvaluation& e, const TrajectoryEvaluationOptions& options, std::ostringstream& md) {
   md << "## Scale between consecutive keyframes\n\n";
   if (!e.keyframe_scale_unavailable.empty()) {
@@ -221,6 +235,7 @@ std::string evaluationMarkdown(const EvaluationSources& sources, const Trajector
   markdownAte(evaluation, options.paper_ate, md);
   markdownRelative(evaluation, options, md);
   markdownDrift(evaluation, options.kitti_drift, md);
+  markdownScale(evaluation, options, md);
   markdownKeyframeScale(evaluation, options, md);
   markdownSegments(evaluation, md);
   md << "## Method\n\n"
@@ -233,6 +248,11 @@ std::string evaluationMarkdown(const EvaluationSources& sources, const Trajector
         "alignment to the ground truth; the RMSE is over all poses of all segments. Re-aligning pose and scale per "
         "segment is what re-setting the scale from ground truth means for a trajectory evaluated afterwards: the "
         "error then measures drift within 200 frames, not the accumulated drift of the whole sequence.\n"
+     << "- Paper protocol as stated: the same segments' Sim(3) scales multiply the estimated motion within each "
+        "segment, the motions are chained from the first kept pose, and the chained trajectory gets one SE(3) "
+        "alignment: the scale comes from ground truth, the drift of position and heading accumulates.\n"
+     << "- SE(3) ATE and the KITTI drift \"as given\" take no scale from ground truth: the figures of a metric "
+        "estimate (run with a camera height).\n"
      << "- RPE: E = (gt_i^-1 gt_j)^-1 (est_i^-1 est_j), j = i + delta; translation |t(E)|, rotation angle(R(E)).\n"
      << "- Frame-to-frame errors: angle between the true and estimated rotation of each motion i -> i+1, and angle "
         "between their translation directions; both independent of the estimate's scale.\n"
@@ -256,7 +276,12 @@ std::string evaluationJson(const EvaluationSources& sources, const TrajectoryEva
       {"association", jsonString(sources.association)},
       {"pairs", jsonCount(evaluation.pairs)},
       {"gt_length_m", jsonNumber(evaluation.gt_length_m)},
+      {"scale", jsonObject({{"path", jsonNumber(evaluation.path_scale)},
+                            {"end", jsonNumber(evaluation.end_scale)},
+                            {"end_frames", std::to_string(options.end_frames)}},
+                           -1)},
       {"ate_m", jsonObject({{"paper", jsonPaperAte(evaluation, options.paper_ate, 2)},
+                            {"paper_chained", jsonAte(evaluation.paper_chained_ate, 2)},
                             {"sim3", jsonAte(evaluation.sim3_ate, 2)},
                             {"se3", jsonAte(evaluation.se3_ate, 2)},
                             {"straight_line_reference", jsonObject({{"statistics", jsonStatistics(evaluation.straight_line_m)}}, 2)}},

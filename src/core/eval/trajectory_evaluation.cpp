@@ -130,6 +130,36 @@ std::string segmentedAte(const std::vector<Eigen::Vector3d>& gt, const std::vect
   return "";
 }
 
+double travelScale(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est, std::size_t first, std::size_t step) {
+  double true_travel = 0.0, travel = 0.0;
+  step = std::max<std::size_t>(step, 1);
+  for (std::size_t i = first; i + 1 < gt.size() && i < est.size(); i += step) {
+    const std::size_t next = std::min(i + step, std::min(gt.size(), est.size()) - 1);
+    true_travel += (gt[next] - gt[i]).norm();
+    travel += (est[next] - est[i]).norm();
+  }
+  return true_travel > 0.0 ? travel / true_travel : 0.0;
+}
+
+std::string chainedSegmentAte(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est,
+                              const SegmentedAteResult& segments, AteResult* result) {
+  if (segments.segments.empty()) return "no segments";
+  const std::size_t first = segments.segments.front().first;
+  std::vector<Eigen::Vector3d> chained{est[first]};
+  for (const AteSegment& segment : segments.segments)
+    for (std::size_t i = std::max(segment.first, first + 1); i < segment.first + segment.count; ++i)
+      chained.push_back(chained.back() + segment.scale * (est[i] - est[i - 1]));
+  const std::vector<Eigen::Vector3d> truth = slice(gt, first, chained.size());
+  AteResult ate;
+  const std::string error = alignUmeyama(chained, truth, false, &ate.alignment);
+  if (!error.empty()) return error;
+  std::vector<double> errors;
+  for (std::size_t i = 0; i < chained.size(); ++i) errors.push_back((ate.alignment * chained[i] - truth[i]).norm());
+  ate.error_m = errorStatistics(std::move(errors));
+  *result = std::move(ate);
+  return "";
+}
+
 std::string relativePoseError(const std::vector<Eigen::Isometry3d>& gt, const std::vector<Eigen::Isometry3d>& est,
                               int delta_frames, double est_scale, RpeResult* result) {
   if (delta_frames < 1) return "the RPE frame delta must be >= 1 (got " + std::to_string(delta_frames) + ")";

@@ -12,6 +12,7 @@ std::string TrajectoryEvaluationOptions::validate() const {
   if (rpe_delta_frames < 1) out << "rpe_delta_frames must be >= 1 (got " << rpe_delta_frames << ")";
   else if (!(min_gt_translation_m >= 0.0)) out << "min_gt_translation_m must be >= 0 (got " << min_gt_translation_m << ")";
   else if (!(min_keyframe_travel_m > 0.0)) out << "min_keyframe_travel_m must be > 0 (got " << min_keyframe_travel_m << ")";
+  else if (end_frames < 2) out << "end_frames must be >= 2 (got " << end_frames << ")";
   return out.str();
 }
 
@@ -31,8 +32,14 @@ std::string evaluateTrajectory(const PosePairs& pairs, const TrajectoryEvaluatio
   if (error.empty()) error = frameToFrameErrors(pairs.gt, pairs.est, options.min_gt_translation_m, &result.frame_to_frame);
   if (!error.empty()) return error;
 
+  constexpr std::size_t kScaleStep = 10;  // pairs: frame-to-frame jitter would lengthen the estimate's path
+  result.path_scale = travelScale(gt, est, 0, kScaleStep);
+  const auto end_frames = static_cast<std::size_t>(options.end_frames);
+  result.end_scale = travelScale(gt, est, gt.size() > end_frames ? gt.size() - end_frames : 0, kScaleStep);
   const double scale = result.sim3_ate.alignment.scale;
   result.paper_ate_unavailable = segmentedAte(gt, est, options.paper_ate, &result.paper_ate);
+  if (result.paper_ate_unavailable.empty())
+    result.paper_ate_unavailable = chainedSegmentAte(gt, est, result.paper_ate, &result.paper_chained_ate);
   result.rpe_unavailable = relativePoseError(pairs.gt, pairs.est, options.rpe_delta_frames, scale, &result.rpe);
   result.drift_unavailable = kittiDrift(pairs.gt, pairs.est, 1.0, options.kitti_drift, &result.drift_as_given);
   if (result.drift_unavailable.empty())

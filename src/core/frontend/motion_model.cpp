@@ -31,6 +31,12 @@ void MotionModel::correct(const Eigen::Isometry3d& correction) {
   T_world_before_ = orthonormalized(correction * T_world_before_);
 }
 
+void MotionModel::rescale(double scale, const Eigen::Vector3d& about) {
+  T_world_last_.translation() = about + scale * (T_world_last_.translation() - about);
+  T_world_before_.translation() = about + scale * (T_world_before_.translation() - about);
+  for (Vector6d& motion : driving_motions_) motion.head<3>() *= scale;  // pure travel: its log is the translation
+}
+
 double MotionModel::framesBetween(const FrameStamp& from, const FrameStamp& to) const {
   const double interval = median({frame_intervals_.begin(), frame_intervals_.end()});
   const double frames = interval > 0.0 ? (to.time - from.time) / interval : static_cast<double>(to.index - from.index);
