@@ -115,6 +115,14 @@ class TrackingNodelet : public nodelet::Nodelet {
       };
       OdometryOptions options = options_;
       options.road.road_classes = roadClassBits(frame->class_names);  // the intake's table: Canny's has no road
+      bool extrinsic_from_tf = false;
+      const Eigen::Isometry3d T_base_cam = extrinsic_->baseFromCamera(frame->header.frame_id, &extrinsic_from_tf);
+      if (options.road.enabled() && extrinsic_from_tf) {  // the mounting from tf, not the parameters
+        options.road.setMounting(T_base_cam.linear());
+        NODELET_INFO_STREAM("camera mounting against the road from tf (" << tf_.frames.base_frame << " -> " << frame->header.frame_id
+                                                                         << "): pitch " << options.road.pitch_deg << " deg, roll "
+                                                                         << options.road.roll_deg << " deg");
+      }
       odometry_ = std::make_unique<Odometry>(
           options, camera_, mapping_mode_,
           std::make_shared<NodeletMappingLink>(getNodeHandle(), options, camera_, stamp_of, &class_names_, &tracer_));

@@ -100,6 +100,23 @@ TEST(RoadPlaneFinder, EvidenceIsRoadClassAheadOrWithoutClassesTheLaneAhead) {
   EXPECT_FALSE(finder.isEvidence(kerb.x(), kerb.y(), 1u)) << "without classes only the lane ahead";
 }
 
+TEST(RoadScaleOptions, TheMountingFromTheCamerasOrientationOnTheVehicle) {
+  // The optical default (z forward = base x, y down = -base z), then pitched 3 degrees down and
+  // rolled 2 degrees (right side down): the road's normal the angles give is the base frame's down.
+  Eigen::Matrix3d R_base_optical;
+  R_base_optical << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const Eigen::Matrix3d R_base_cam = R_base_optical * Eigen::AngleAxisd(-3.0 * M_PI / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix() *
+                                     Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  RoadScaleOptions options;
+  options.setMounting(R_base_optical);
+  EXPECT_NEAR(options.pitch_deg, 0.0, 1e-9);
+  EXPECT_NEAR(options.roll_deg, 0.0, 1e-9);
+  options.setMounting(R_base_cam);
+  EXPECT_TRUE(options.expectedDown().isApprox(R_base_cam.transpose() * -Eigen::Vector3d::UnitZ(), 1e-12));
+  EXPECT_GT(options.pitch_deg, 2.9);
+  EXPECT_GT(options.roll_deg, 1.9);
+}
+
 /// Travel of the estimate over the true travel between two frames.
 double travelRatio(const std::vector<FramePose>& poses, const std::vector<Eigen::Isometry3d>& truth, int from, int to) {
   double estimated = 0.0, real = 0.0;

@@ -40,6 +40,9 @@ struct RoadScaleOptions {
   double max_height_change = 0.15;
 
   bool enabled() const { return camera_height > 0.0; }
+  /// Sets pitch and roll from the camera's orientation on the vehicle (R_base_cam: optical frame to
+  /// a REP-103 base frame, z up), as tf gives it.
+  void setMounting(const Eigen::Matrix3d& R_base_cam);
   /// The road's downward unit normal in the optical frame the mounting predicts.
   Eigen::Vector3d expectedDown() const;
   std::string validate() const;

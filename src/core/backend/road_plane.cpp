@@ -1,5 +1,6 @@
 #include "semantic_edge_vo/backend/road_plane.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -60,6 +61,12 @@ bool leastSquaresPlane(const std::vector<Eigen::Vector3d>& points, const std::ve
 Eigen::Vector3d RoadScaleOptions::expectedDown() const {
   const double pitch = pitch_deg * kDegrees, roll = roll_deg * kDegrees;
   return Eigen::Vector3d(std::sin(roll) * std::cos(pitch), std::cos(roll) * std::cos(pitch), std::sin(pitch));
+}
+
+void RoadScaleOptions::setMounting(const Eigen::Matrix3d& R_base_cam) {
+  const Eigen::Vector3d down = R_base_cam.transpose() * -Eigen::Vector3d::UnitZ();  // expectedDown() of these angles
+  pitch_deg = std::asin(std::clamp(down.z(), -1.0, 1.0)) / kDegrees;
+  roll_deg = std::atan2(down.x(), down.y()) / kDegrees;
 }
 
 std::string RoadScaleOptions::validate() const {
