@@ -75,7 +75,7 @@ TEST(RoadPlaneFinder, FindsNoRoadInAWallOrInTooFewPoints) {
   EXPECT_FALSE(finder.fit(roadPoints(200, tilted, &random)).found);
 }
 
-TEST(RoadPlaneFinder, EvidenceIsRoadClassAheadOrWithoutClassesTheLaneAhead) {
+TEST(RoadPlaneFinder, EvidenceIsTheRoadClassAheadAndTheLaneAhead) {
   RoadScaleOptions options = pitchedCamera();
   options.pitch_deg = 0.0;
   const PinholeCamera camera = kittiCamera();
@@ -87,8 +87,11 @@ TEST(RoadPlaneFinder, EvidenceIsRoadClassAheadOrWithoutClassesTheLaneAhead) {
     const Eigen::Vector2d lane = pixelOf(0.5, 8.0), kerb = pixelOf(5.0, 8.0), far = pixelOf(0.0, 40.0);
     EXPECT_TRUE(finder.isEvidence(lane.x(), lane.y(), 1u));
     EXPECT_TRUE(finder.isEvidence(kerb.x(), kerb.y(), 1u));
-    EXPECT_FALSE(finder.isEvidence(lane.x(), lane.y(), 1u | 2u)) << "a road-sidewalk boundary";
-    EXPECT_FALSE(finder.isEvidence(lane.x(), lane.y(), 0u)) << "a point of no class";
+    EXPECT_TRUE(finder.isEvidence(lane.x(), lane.y(), 0u)) << "road texture in the lane ahead";
+    EXPECT_TRUE(finder.isEvidence(lane.x(), lane.y(), 1u | 2u)) << "a kerb's foot in the lane ahead";
+    EXPECT_FALSE(finder.isEvidence(lane.x(), lane.y(), 1u << 13)) << "a car in the lane";
+    EXPECT_FALSE(finder.isEvidence(kerb.x(), kerb.y(), 1u | 2u)) << "a road-sidewalk boundary beside the lane";
+    EXPECT_FALSE(finder.isEvidence(kerb.x(), kerb.y(), 0u)) << "a point of no class beside the lane";
     EXPECT_FALSE(finder.isEvidence(far.x(), far.y(), 1u)) << "beyond max_ahead";
     EXPECT_FALSE(finder.isEvidence(camera.cx, camera.cy - 10.0, 1u)) << "above the horizon";
   }

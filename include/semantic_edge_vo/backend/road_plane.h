@@ -18,12 +18,12 @@ struct RoadScaleOptions {
   /// down), deg. Fits whose normal leans farther than max_normal_deviation from it are rejected.
   double pitch_deg = 0.0, roll_deg = 0.0;
   double max_normal_deviation_deg = 6.0;
-  /// Class bits of the road; 0 (no classes: Canny intake): every point of `region` is evidence,
-  /// textured road in front of the car, with whatever else stands there as outliers.
+  /// Class bits of the road; 0: no classes (the Canny intake).
   std::uint32_t road_classes = 0;
   /// Where road points are taken, on the road plane the mounting predicts, in camera heights: ahead
-  /// of the camera from min_ahead to max_ahead, at most `half_width` to either side. Class-less
-  /// evidence keeps to one lane (`lane_half_width`).
+  /// of the camera from min_ahead to max_ahead; edges of the road class alone up to `half_width` to
+  /// either side; in the lane ahead (`lane_half_width`) also points of no class and edges touching
+  /// the road, and without classes every point (whatever stands there is an outlier to the fit).
   double min_ahead = 2.0, max_ahead = 10.0, half_width = 4.0, lane_half_width = 1.2;
   double inlier_band = 0.05;     ///< a point within this fraction of the height of the plane is on it
   int min_inliers = 15;          ///< a fit needs this many points on the plane

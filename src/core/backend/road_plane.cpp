@@ -91,8 +91,13 @@ std::uint32_t roadClassBits(const std::vector<std::string>& class_names) {
 }
 
 bool RoadPlaneFinder::isEvidence(float u, float v, std::uint32_t class_mask) const {
-  const bool with_classes = options_.road_classes != 0;
-  if (with_classes && (class_mask == 0 || (class_mask & ~options_.road_classes) != 0)) return false;
+  const std::uint32_t road = options_.road_classes;
+  const bool road_only = road != 0 && class_mask != 0 && (class_mask & ~road) == 0;
+  // The lane ahead is mostly road: every point there without classes; with classes its points of no
+  // class (road texture) and its edges that touch the road (a marking, a kerb's foot), which keep
+  // the fit going where road-class edges are few. What stands in the lane is an outlier to the fit.
+  const bool lane_kind = road == 0 || class_mask == 0 || (class_mask & road) != 0;
+  if (!road_only && !lane_kind) return false;
   const Eigen::Vector3d down = options_.expectedDown();
   const Eigen::Vector3d ray((u - camera_.cx) / camera_.fx, (v - camera_.cy) / camera_.fy, 1.0);
   const double below = down.dot(ray);
@@ -101,8 +106,8 @@ bool RoadPlaneFinder::isEvidence(float u, float v, std::uint32_t class_mask) con
   const Eigen::Vector3d ahead = (Eigen::Vector3d::UnitZ() - down.z() * down).normalized();
   const double lateral = std::abs(on_road.dot(ahead.cross(down)));
   const double distance = on_road.dot(ahead);
-  return distance >= options_.min_ahead && distance <= options_.max_ahead &&
-         lateral <= (with_classes ? options_.half_width : options_.lane_half_width);
+  if (distance < options_.min_ahead || distance > options_.max_ahead) return false;
+  return (road_only && lateral <= options_.half_width) || (lane_kind && lateral <= options_.lane_half_width);
 }
 
 RoadFit RoadPlaneFinder::fit(const std::vector<Eigen::Vector3d>& points) const {
