@@ -66,8 +66,7 @@ void Odometry::makeFirstKeyframe(Eigen::Isometry3d* T_last_first_out) {
   if (!scale_carried) motion_.forgetDrivingMotions();  // travel at another map's scale
   // A new map is in metres only as far as the old one's were carried into it, until its own road.
   if (!scale_carried) map_scale_measured_ = false;
-  if (map_scale_measured_) scale_ = ScaleState::kHeld;
-  else scale_ = ScaleState::kArbitrary;
+  scale_ = map_scale_measured_ ? ScaleState::kHeld : ScaleState::kArbitrary;
   if (!map_scale_measured_) scale_confidence_ = 0.0;
   T_last_first.translation() *= depth_scale;
   const Eigen::Isometry3d T_world_first = motion_.predict(stampOf(*waiting_.front().frame));
