@@ -11,6 +11,7 @@
 #include "semantic_edge_vo/backend/odometry.h"
 #include "semantic_edge_vo/backend/road_plane.h"
 #include "semantic_edge_vo/common/class_table.h"
+#include "semantic_edge_vo/eval/trajectory_evaluation.h"
 #include "semantic_edge_vo/frontend/odometry_frame.h"
 #include "semantic_edge_vo/synthetic/synthetic_sequence.h"
 
@@ -120,14 +121,11 @@ TEST(RoadScaleOptions, TheMountingFromTheCamerasOrientationOnTheVehicle) {
   EXPECT_GT(options.roll_deg, 1.9);
 }
 
-/// Travel of the estimate over the true travel between two frames.
-double travelRatio(const std::vector<FramePose>& poses, const std::vector<Eigen::Isometry3d>& truth, int from, int to) {
-  double estimated = 0.0, real = 0.0;
-  for (int i = from; i < to; ++i) {
-    estimated += (poses[static_cast<std::size_t>(i + 1)].T_world_cam.translation() - poses[static_cast<std::size_t>(i)].T_world_cam.translation()).norm();
-    real += (truth[static_cast<std::size_t>(i + 1)].translation() - truth[static_cast<std::size_t>(i)].translation()).norm();
-  }
-  return estimated / real;
+/// Travel of the estimate over the true travel from frame `from` to the last.
+double travelRatio(const std::vector<FramePose>& poses, const std::vector<Eigen::Isometry3d>& truth, std::size_t from) {
+  std::vector<Eigen::Vector3d> positions;
+  for (const FramePose& pose : poses) positions.push_back(pose.T_world_cam.translation());
+  return travelScale(positionsOf(truth), positions, from, 1);
 }
 
 TEST(RoadScale, ADriveStartedAtTheInitialisersScaleDrivesOnInMetres) {
@@ -152,7 +150,7 @@ TEST(RoadScale, ADriveStartedAtTheInitialisersScaleDrivesOnInMetres) {
     for (const FramePose& pose : odometry.flush()) poses.push_back(pose);
     ASSERT_EQ(poses.size(), static_cast<std::size_t>(kFrames));
   }
-  const double scale_without = travelRatio(without, truth, 75, kFrames - 1), scale_with = travelRatio(with, truth, 75, kFrames - 1);
+  const double scale_without = travelRatio(without, truth, 75), scale_with = travelRatio(with, truth, 75);
   std::printf("travel over the true travel, frames 75-%d: %.3f without a camera height, %.3f with; scale %s, confidence %.2f\n", kFrames - 1,
               scale_without, scale_with, toString(with.back().scale), with.back().scale_confidence);
   EXPECT_GT(std::abs(std::log(scale_without)), std::log(1.2)) << "the initialiser's scale happened to be metric: the test shows nothing";

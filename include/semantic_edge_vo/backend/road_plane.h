@@ -58,7 +58,6 @@ struct RoadFit {
   double height = 0.0;       ///< the camera's distance from the plane, map units
   int evidence = 0;          ///< road points offered
   std::vector<int> inliers;  ///< indices (into the points offered) on the plane
-  double rms = 0.0;          ///< of the inliers' distances, fraction of the height
 };
 
 /// Finds the road plane under a keyframe, robustly (RANSAC over plane triples whose normal agrees
@@ -73,10 +72,8 @@ class RoadPlaneFinder {
   RoadFit fit(const std::vector<Eigen::Vector3d>& points) const;
   /// Whether a plane this high (map units) measures a map already in metres (max_height_change).
   bool agreesWithMetres(double height) const;
-  /// The plane under a keyframe from its points with depth (inverse_depths parallel to points: the
-  /// depths to use; empty: the points' own). `used` gets the index of each point offered.
-  RoadFit fitPoints(const std::vector<MapPoint>& points, const std::vector<double>& inverse_depths,
-                    std::vector<int>* used) const;
+  /// The plane under a keyframe, from its points with a measured depth that are road evidence.
+  RoadFit fitKeyframe(const std::vector<MapPoint>& points) const;
 
  private:
   RoadScaleOptions options_;

@@ -44,11 +44,10 @@ struct WindowOptimizerResult {
   int keyframes = 0, points = 0, photometric_residuals = 0, edge_residuals = 0;
   double initial_cost = 0.0, final_cost = 0.0;
   bool solved = false;
-  /// Metric scale (RoadScaleOptions::enabled): keyframes whose road plane was found, the camera
-  /// height over the newest such plane's height before the solve (how far the map's scale was from
-  /// metres there; 0: no plane found), and the scale the window took towards the road (1: held).
+  /// Metric scale (RoadScaleOptions::enabled): keyframes whose road plane measured the scale, and
+  /// the scale the window took towards the road (1: held).
   int road_keyframes = 0;
-  double height_ratio = 0.0, scale_step = 1.0;
+  double scale_step = 1.0;
 };
 
 /// Windowed optimisation of keyframe poses and point inverse depths with Ceres (paper III-C):

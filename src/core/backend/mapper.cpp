@@ -197,8 +197,7 @@ double Mapper::measureMapScale(const Eigen::Vector3d& about) {
   const RoadPlaneFinder finder(options_.road, camera_);
   std::vector<double> heights;
   for (const auto& keyframe : keyframes_) {
-    std::vector<int> offered;
-    const RoadFit fit = finder.fitPoints(keyframe->points, {}, &offered);
+    const RoadFit fit = finder.fitKeyframe(keyframe->points);
     if (fit.found) heights.push_back(fit.height);
   }
   // One fit may be a kerb or a verge: the scale is set once kMinRoadKeyframes of them agree.

@@ -149,7 +149,6 @@ RoadFit RoadPlaneFinder::fit(const std::vector<Eigen::Vector3d>& points) const {
   }
   fit.down = best.down;
   fit.height = best.height;
-  fit.rms = std::sqrt(best_squared / static_cast<double>(best_inliers.size())) / best.height;
   fit.inliers = std::move(best_inliers);
   fit.found = static_cast<int>(fit.inliers.size()) >= options_.min_inliers &&
               static_cast<double>(fit.inliers.size()) >= options_.min_inlier_ratio * fit.evidence;
@@ -160,18 +159,11 @@ bool RoadPlaneFinder::agreesWithMetres(double height) const {
   return std::abs(std::log(height / options_.camera_height)) <= std::log1p(options_.max_height_change);
 }
 
-RoadFit RoadPlaneFinder::fitPoints(const std::vector<MapPoint>& points, const std::vector<double>& inverse_depths,
-                                   std::vector<int>* used) const {
+RoadFit RoadPlaneFinder::fitKeyframe(const std::vector<MapPoint>& points) const {
   std::vector<Eigen::Vector3d> evidence;
-  used->clear();
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const MapPoint& point = points[i];
-    const double inverse_depth = inverse_depths.empty() ? point.inverse_depth : inverse_depths[i];
-    const bool measured = inverse_depths.empty() ? point.hasDepth() : inverse_depth > 0.0;
-    if (!measured || !isEvidence(point.u, point.v, point.class_mask)) continue;
-    evidence.push_back(camera_.backProject(point.u, point.v, 1.0 / inverse_depth));
-    used->push_back(static_cast<int>(i));
-  }
+  for (const MapPoint& point : points)
+    if (point.hasDepth() && isEvidence(point.u, point.v, point.class_mask))
+      evidence.push_back(camera_.backProject(point.u, point.v, 1.0 / point.inverse_depth));
   return fit(evidence);
 }
 

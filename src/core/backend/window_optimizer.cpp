@@ -125,11 +125,9 @@ void scaleTowardTheRoad(const RoadScaleOptions& road, const std::deque<std::shar
   const RoadPlaneFinder finder(road, window[first]->frame->pyramid->level(0).camera);
   double measured = 0.0;  // sum of the keyframes' log scale errors
   for (std::size_t k = first; k < window.size(); ++k) {
-    std::vector<int> offered;
-    const RoadFit fit = finder.fitPoints(window[k]->points, {}, &offered);
+    const RoadFit fit = finder.fitKeyframe(window[k]->points);
     if (!fit.found || !finder.agreesWithMetres(fit.height)) continue;
-    result->height_ratio = road.camera_height / fit.height;
-    measured += std::log(result->height_ratio);
+    measured += std::log(road.camera_height / fit.height);
     ++result->road_keyframes;
   }
   if (result->road_keyframes == 0) return;  // held
