@@ -1,10 +1,8 @@
 // EdgeIntake: image + camera_info (+ class map, + edge map) -> SemanticEdgeFrame (edges, classes,
 // point sample). Raw images through image_transport, or sensor_msgs/CompressedImage decoded here.
 #include <cstring>
+#include <iomanip>
 #include <mutex>
-
-#include <message_filters/subscriber.h>
-#include <message_filters/time_synchronizer.h>
 
 #include <cv_bridge/cv_bridge.h>
 #include <image_transport/camera_common.h>
@@ -12,6 +10,7 @@
 #include <nodelet/nodelet.h>
 #include <opencv2/imgproc.hpp>
 #include <pluginlib/class_list_macros.hpp>
+#include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/image_encodings.h>
 
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
@@ -19,6 +18,7 @@
 #include "semantic_edge_vo/frontend/point_sampler.h"
 #include "semantic_edge_vo/edges/class_map_carrier.h"
 #include "semantic_edge_vo/edges/semantic_edge_extractor.h"
+#include "semantic_edge_vo/ros/camera_info_pairing.h"
 #include "semantic_edge_vo/ros/class_input.h"
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/frame_pairing.h"
@@ -26,6 +26,7 @@
 #include "semantic_edge_vo/config/intake_options_loading.h"
 #include "semantic_edge_vo/config/live_options.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
+#include "semantic_edge_vo/ros/nodelet_diagnostics.h"
 #include "semantic_edge_vo/config/options_loading.h"
 #include "semantic_edge_vo/ros/rectifier.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
@@ -39,7 +40,8 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
   void onInit() override {
     ros::NodeHandle& node = getNodeHandle();
     ros::NodeHandle& private_node = getPrivateNodeHandle();
-    rejections_ = std::make_unique<InputRejections>(getName());
+    diagnostics_ = std::make_unique<NodeletDiagnostics>(node, getName());
+    rejections_ = std::make_unique<InputRejections>(getName(), [this](const std::string& reason) { onRejected(reason); });
     const RosParameterSource parameters(private_node);
     ParameterLoader loader(parameters);
     IntakeStreamOptions stream;
@@ -66,21 +68,24 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     carrier_ = ClassMapCarrier(stream.class_carry);
     stamp_order_ = StampOrder(time_jump_back_);
     const bool need_edges = options_.mode == IntakeMode::kFused && stream.edge_source == "topic";
+    info_pairing_ = std::make_unique<CameraInfoPairing>(stream.camera_info_tolerance, stream.camera_info_wait,
+                                                        static_cast<std::size_t>(stream.queue_size));
+    image_timeout_ = stream.image_timeout;
+    started_ = ros::WallTime::now();
+    diagnostics_->beforePublishing([this] { watch(); });
     pairing_ = std::make_unique<FramePairing>(need_edges, stream.class_wait, static_cast<std::size_t>(stream.max_pending));
     frame_publisher_ = node.advertise<SemanticEdgeFrame>("edge_frame", 5);
     image_transport::ImageTransport image_transport(node);
     edge_image_publisher_ = image_transport.advertise("edge_image", 1);
     const auto queue = static_cast<std::uint32_t>(stream.queue_size);
-    if (stream.transport == "raw") {
-      camera_subscriber_ = image_transport.subscribeCamera("image", queue, &EdgeIntakeNodelet::onImage, this);
-    } else {
-      // The compressed stream beside the resolved (remapped) image topic, as image_transport names it.
-      const std::string image_topic = node.resolveName("image");
-      compressed_subscriber_.subscribe(node, image_topic + "/compressed", queue);
-      info_subscriber_.subscribe(node, image_transport::getCameraInfoTopic(image_topic), queue);
-      compressed_sync_ = std::make_unique<CompressedSync>(compressed_subscriber_, info_subscriber_, queue);
-      compressed_sync_->registerCallback(&EdgeIntakeNodelet::onCompressedImage, this);
-    }
+    // camera_info beside the resolved (remapped) image topic, as image_transport names it.
+    image_topic_ = node.resolveName("image");
+    info_subscriber_ = node.subscribe(image_transport::getCameraInfoTopic(image_topic_), queue, &EdgeIntakeNodelet::onInfo, this);
+    if (stream.transport == "raw")
+      image_subscriber_ = image_transport.subscribe("image", queue, &EdgeIntakeNodelet::onRawImage, this);
+    else
+      image_subscriber_ros_ = node.subscribe(image_topic_ + "/compressed", queue, &EdgeIntakeNodelet::onCompressedImage, this);
+    pairing_timer_ = node.createWallTimer(ros::WallDuration(std::min(0.05, stream.camera_info_wait / 4)), &EdgeIntakeNodelet::onPairingTimer, this);
     if (options_.mode == IntakeMode::kCanny) return;
     const char* class_topic = options_.mode == IntakeMode::kFused ? "class_probabilities" : "class_edge_probabilities";
     class_subscriber_ = node.subscribe(class_topic, queue, &EdgeIntakeNodelet::onClasses, this);
@@ -122,20 +127,53 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     return {};
   }
 
-  void onCompressedImage(const sensor_msgs::CompressedImageConstPtr& compressed, const sensor_msgs::CameraInfoConstPtr& info) {
+  void onCompressedImage(const sensor_msgs::CompressedImageConstPtr& compressed) {
     sensor_msgs::ImagePtr image;
     std::string detail;
+    diagnostics_->input(compressed->header.seq);
+    std::lock_guard<std::mutex> lock(mutex_);
+    last_image_ = ros::WallTime::now();
     const std::string reason = decodeCompressedImage(*compressed, &image, &detail);
     if (!reason.empty()) {
-      std::lock_guard<std::mutex> lock(mutex_);
       rejections_->reject("compressed image", reason, detail);
       return;
     }
-    onImage(image, info);
+    pair(info_pairing_->addImage(image, last_image_));
   }
 
-  void onImage(const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfoConstPtr& info) {
+  void onRawImage(const sensor_msgs::ImageConstPtr& image) {
+    diagnostics_->input(image->header.seq);
     std::lock_guard<std::mutex> lock(mutex_);
+    last_image_ = ros::WallTime::now();
+    pair(info_pairing_->addImage(image, last_image_));
+  }
+
+  void onInfo(const sensor_msgs::CameraInfoConstPtr& info) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pair(info_pairing_->addInfo(info, ros::WallTime::now()));
+  }
+
+  void onPairingTimer(const ros::WallTimerEvent&) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pair(info_pairing_->expire(ros::WallTime::now()));
+  }
+
+  /// Images leaving the camera_info pairing: with their camera_info on to the frame, without it dropped.
+  void pair(const std::vector<CameraInfoPairing::Pair>& pairs) {
+    for (const CameraInfoPairing::Pair& pair : pairs) {
+      if (pair.info) {
+        onImage(pair.image, pair.info);
+        continue;
+      }
+      std::ostringstream detail;
+      detail << "no camera_info on " << image_transport::getCameraInfoTopic(image_topic_)
+             << " within camera_info_tolerance of the image's stamp " << pair.image->header.stamp << " (nor within camera_info_wait)";
+      rejections_->reject("image", "no_camera_info", detail.str());
+    }
+  }
+
+  /// Called with mutex_ held.
+  void onImage(const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfoConstPtr& info) {
     std::string detail;
     const std::string reason = check(*image, *info, &detail);
     if (!reason.empty()) {
@@ -224,8 +262,10 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
   }
 
   void process(const FramePairing::Frame& input) {
+    const ros::WallTime start = ros::WallTime::now();
     try {
       makeFrame(input);
+      diagnostics_->processed((ros::WallTime::now() - start).toSec() * 1e3);
     } catch (const cv::Exception& e) {
       // An OpenCV assertion on input the checks let through must not take the manager (and every
       // nodelet in it) down: the frame is dropped, the intake goes on.
@@ -245,6 +285,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     }
     auto frame = boost::make_shared<SemanticEdgeFrame>();
     frame->header = image.header;
+    frame->header.seq = ++frames_published_;  // consecutive: the stages after count the frames lost on the way
     frame->camera_info = rectify_ ? rectifier_.rectifiedInfo() : *input.info;
     frame->camera_info.header = input.info->header;
     frame->class_names = classes_.names();
@@ -287,6 +328,40 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     if (edge_image_publisher_.getNumSubscribers() > 0) publishEdgeImage(*frame, gray);
     frame_publisher_.publish(SemanticEdgeFrameConstPtr(frame));
     tracer_.published(frame_publisher_, frame.get(), frame->header.stamp);
+    diagnostics_->clear("camera_info");
+  }
+
+  /// Every refused input counts as dropped; a camera_info that does not describe the images is an
+  /// error until a frame is made again.
+  void onRejected(const std::string& reason) {
+    diagnostics_->dropped();
+    if (reason == "no_camera_info" || reason == "size_mismatch" || reason == "invalid_camera_info")
+      diagnostics_->problem("camera_info", diagnostic_msgs::DiagnosticStatus::ERROR, "camera_info: " + reason);
+  }
+
+  /// The watchdog, before each diagnostics publication: images stopped (or never came).
+  void watch() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    diagnostics_->set("images waiting for camera_info", std::to_string(info_pairing_->waiting()));
+    diagnostics_->set("images waiting for class maps", std::to_string(pairing_->pending()));
+    const ros::WallTime now = ros::WallTime::now();
+    const double silent = (now - (last_image_.isZero() ? started_ : last_image_)).toSec();
+    if (silent < image_timeout_) {
+      if (silence_logged_.isZero()) return;
+      diagnostics_->clear("no_image");
+      silence_logged_ = ros::WallTime();
+      NODELET_INFO_STREAM("watchdog: images on " << image_topic_ << " again");
+      return;
+    }
+    std::ostringstream message;
+    message << "no image on " << image_topic_ << " for " << std::fixed << std::setprecision(1) << silent << " s"
+            << (last_image_.isZero() ? " (none since the start)" : "");
+    diagnostics_->problem("no_image", diagnostic_msgs::DiagnosticStatus::ERROR, message.str());
+    // Logged when the silence starts, then every 30 s while it lasts.
+    if (silence_logged_.isZero() || (now - silence_logged_).toSec() >= 30.0) {
+      NODELET_ERROR_STREAM("watchdog: " << message.str());
+      silence_logged_ = now;
+    }
   }
 
   /// class_maps newest: the newest class map carried to the image, and its age; false when none is
@@ -350,8 +425,6 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     edge_image_publisher_.publish(overlay.toImageMsg());
   }
 
-  using CompressedSync = message_filters::TimeSynchronizer<sensor_msgs::CompressedImage, sensor_msgs::CameraInfo>;
-
   SemanticEdgeOptions options_;
   PointSampler sampler_{PointSamplerOptions()};  ///< set up in onInit
   ClassTable classes_;
@@ -359,17 +432,21 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
   bool fallback_to_canny_ = true;
   bool carry_classes_ = false;  ///< class_maps newest (fused, semantic_edges)
   ClassMapCarrier carrier_;      ///< class_maps newest
+  std::unique_ptr<NodeletDiagnostics> diagnostics_;
   std::unique_ptr<InputRejections> rejections_;
   MessageTracer tracer_;
   ros::Publisher frame_publisher_;
   image_transport::Publisher edge_image_publisher_;
-  image_transport::CameraSubscriber camera_subscriber_;
-  message_filters::Subscriber<sensor_msgs::CompressedImage> compressed_subscriber_;
-  message_filters::Subscriber<sensor_msgs::CameraInfo> info_subscriber_;
-  std::unique_ptr<CompressedSync> compressed_sync_;
-  ros::Subscriber class_subscriber_, edge_subscriber_;
-  ros::WallTimer expiry_timer_;
+  std::string image_topic_;  ///< resolved
+  image_transport::Subscriber image_subscriber_;
+  ros::Subscriber image_subscriber_ros_, info_subscriber_, class_subscriber_, edge_subscriber_;
+  ros::WallTimer expiry_timer_, pairing_timer_;
+  double image_timeout_ = 3.0;  // s, IntakeStreamOptions::image_timeout
   std::mutex mutex_;  // guards everything below and serializes all callbacks (frames leave in stamp order)
+  std::unique_ptr<CameraInfoPairing> info_pairing_;
+  ros::WallTime started_, last_image_;
+  ros::WallTime silence_logged_;  ///< when the watchdog last logged the current silence (zero: images flow)
+  std::uint32_t frames_published_ = 0;
   std::unique_ptr<FramePairing> pairing_;
   bool rectify_ = false;  // IntakeStreamOptions::rectify
   Rectifier rectifier_;   // maps of the last calibration (rectify_ only)

@@ -26,6 +26,7 @@
 #include "semantic_edge_vo/backend/mapping_thread.h"
 #include "semantic_edge_vo/common/class_table.h"
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
+#include "semantic_edge_vo/ros/nodelet_diagnostics.h"
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
 #include "semantic_edge_vo/config/live_options.h"
@@ -89,8 +90,12 @@ class MappingNodelet : public nodelet::Nodelet {
       NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
       return;
     }
-    rejections_ = std::make_unique<InputRejections>(getName());
-    extrinsic_ = std::make_unique<CameraExtrinsic>(options_.frames.base_frame, 0.0);
+    diagnostics_ = std::make_unique<NodeletDiagnostics>(node, getName());
+    rejections_ = std::make_unique<InputRejections>(getName(), [this](const std::string&) { diagnostics_->dropped(); });
+    diagnostics_->beforePublishing([this] {
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      diagnostics_->set("queue depth", std::to_string(queue_.size()) + " of " + std::to_string(options_.queue_size));
+    });
     cloud_publisher_ = node.advertise<sensor_msgs::PointCloud2>("semantic_edge_map", 1, /*latch=*/true);
     path_publisher_ = node.advertise<nav_msgs::Path>("path", 1);
     map_publisher_ = node.advertise<KeyframeMap>("keyframe_map", 2, /*latch=*/true);
@@ -165,6 +170,7 @@ class MappingNodelet : public nodelet::Nodelet {
   }
 
   void onTrackedFrame(const TrackedFrameConstPtr& tracked) {
+    diagnostics_->input(tracked->header.seq);
     tracer_.received(tracked_subscriber_.getTopic(), tracked.get(), tracked->header.stamp);
     enqueue({tracked, nullptr});
   }
@@ -191,8 +197,10 @@ class MappingNodelet : public nodelet::Nodelet {
         job = std::move(queue_.front());
         queue_.pop_front();
       }
+      const ros::WallTime start = ros::WallTime::now();
       if (job.tracked) extendPath(*job.tracked);
       if (job.window) updateMap(*keyframeMapOf(*job.window));
+      diagnostics_->processed((ros::WallTime::now() - start).toSec() * 1e3);
     }
   }
 
@@ -201,11 +209,11 @@ class MappingNodelet : public nodelet::Nodelet {
       NODELET_WARN_STREAM("the tracked frames' stamps jumped back: the path starts over");
       path_.poses.clear();
     }
-    camera_frame_ = tracked.camera_frame_id;
-    const Eigen::Isometry3d T_base_cam = extrinsic_->baseFromCamera(camera_frame_);
+    T_base_cam_ = fromPoseMsg(tracked.pose_base_camera);
+    const Eigen::Isometry3d& T_base_cam = T_base_cam_;
     geometry_msgs::PoseStamped pose;
     pose.header.stamp = tracked.header.stamp;
-    pose.header.frame_id = options_.frames.odom_frame;
+    pose.header.frame_id = options_.odom_frame;
     pose.pose = toPoseMsg(baseInOdom(fromPoseMsg(tracked.pose_world_camera), T_base_cam));
     path_.header = pose.header;
     path_.poses.push_back(pose);
@@ -272,7 +280,7 @@ class MappingNodelet : public nodelet::Nodelet {
       voxel_order_.clear();
       last_window_.clear();
     }
-    const Eigen::Isometry3d T_base_cam = extrinsic_->baseFromCamera(camera_frame_);
+    const Eigen::Isometry3d& T_base_cam = T_base_cam_;
     const PinholeCamera camera = cameraFromInfo(map.camera_info);
     std::set<std::uint32_t> in_window;
     for (const MapKeyframe& keyframe : map.keyframes) in_window.insert(keyframe.id);
@@ -306,7 +314,7 @@ class MappingNodelet : public nodelet::Nodelet {
   void publishCloud(const std::vector<MapPointOut>& points, const ros::Time& stamp) {
     auto cloud = boost::make_shared<sensor_msgs::PointCloud2>();
     cloud->header.stamp = stamp;
-    cloud->header.frame_id = options_.frames.odom_frame;
+    cloud->header.frame_id = options_.odom_frame;
     sensor_msgs::PointCloud2Modifier modifier(*cloud);
     modifier.setPointCloud2Fields(5, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32,
                                   "z", 1, sensor_msgs::PointField::FLOAT32, "label", 1, sensor_msgs::PointField::UINT32,
@@ -333,8 +341,8 @@ class MappingNodelet : public nodelet::Nodelet {
   MapOutputOptions options_;
   ClassTable classes_;
 
+  std::unique_ptr<NodeletDiagnostics> diagnostics_;
   std::unique_ptr<InputRejections> rejections_;
-  std::unique_ptr<CameraExtrinsic> extrinsic_;  // worker thread only
   MessageTracer tracer_;
   ros::Publisher cloud_publisher_, path_publisher_, map_publisher_, outcome_publisher_;
   ros::Subscriber tracked_subscriber_;
@@ -363,7 +371,7 @@ class MappingNodelet : public nodelet::Nodelet {
   // Stamps going back mean the odometry started over (its input was played again): so do the path
   // and the map, each on its own topic's stamps (the two topics interleave in any order).
   StampOrder path_order_{0.0}, map_order_{0.0};
-  std::string camera_frame_;  ///< of the latest tracked frame
+  Eigen::Isometry3d T_base_cam_ = opticalDefault();  ///< the camera's mounting, of the latest tracked frame
   nav_msgs::Path path_;
   std::vector<MapKeyframe> last_window_;
   PinholeCamera last_camera_;

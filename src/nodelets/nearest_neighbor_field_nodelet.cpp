@@ -8,6 +8,7 @@
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
+#include "semantic_edge_vo/ros/nodelet_diagnostics.h"
 #include "semantic_edge_vo/config/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
 
@@ -28,12 +29,20 @@ class NearestNeighborFieldNodelet : public nodelet::Nodelet {
       NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
       return;
     }
-    rejections_ = std::make_unique<InputRejections>(getName());
+    diagnostics_ = std::make_unique<NodeletDiagnostics>(node, getName());
+    rejections_ = std::make_unique<InputRejections>(getName(), [this](const std::string&) { diagnostics_->dropped(); });
     field_publisher_ = node.advertise<NearestNeighborField>("nn_field", 5);
     frame_subscriber_ = node.subscribe("edge_frame", 5, &NearestNeighborFieldNodelet::onFrame, this);
   }
 
   void onFrame(const SemanticEdgeFrameConstPtr& frame) {
+    const ros::WallTime start = ros::WallTime::now();
+    diagnostics_->input(frame->header.seq);
+    build(frame);
+    diagnostics_->processed((ros::WallTime::now() - start).toSec() * 1e3);
+  }
+
+  void build(const SemanticEdgeFrameConstPtr& frame) {
     tracer_.received(frame_subscriber_.getTopic(), frame.get(), frame->header.stamp);
     const EdgeSetView edges = edgeSetView(*frame);
     if (!edges.consistent()) {
@@ -55,6 +64,7 @@ class NearestNeighborFieldNodelet : public nodelet::Nodelet {
   }
 
   FieldOptions options_;
+  std::unique_ptr<NodeletDiagnostics> diagnostics_;
   std::unique_ptr<InputRejections> rejections_;
   MessageTracer tracer_;
   ros::Publisher field_publisher_;

@@ -19,6 +19,7 @@
 #include "semantic_edge_vo/common/class_table.h"
 #include "semantic_edge_vo/edges/segmenter.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
+#include "semantic_edge_vo/ros/nodelet_diagnostics.h"
 #include "semantic_edge_vo/config/intake_options_loading.h"
 #include "semantic_edge_vo/config/live_options.h"
 #include "semantic_edge_vo/config/options_loading.h"
@@ -32,7 +33,8 @@ class SegmenterNodelet : public nodelet::Nodelet {
   void onInit() override {
     ros::NodeHandle& node = getNodeHandle();
     ros::NodeHandle& private_node = getPrivateNodeHandle();
-    rejections_ = std::make_unique<InputRejections>(getName());
+    diagnostics_ = std::make_unique<NodeletDiagnostics>(node, getName());
+    rejections_ = std::make_unique<InputRejections>(getName(), [this](const std::string&) { diagnostics_->dropped(); });
     const RosParameterSource parameters(private_node);
     ParameterLoader loader(parameters);
     SegmenterOptions options;
@@ -78,6 +80,7 @@ class SegmenterNodelet : public nodelet::Nodelet {
   }
 
   void onImage(const sensor_msgs::ImageConstPtr& image) {
+    diagnostics_->input();  // not counted by sequence: skipping images is how the network keeps up
     static const std::set<std::string> kEncodings = {enc::MONO8, enc::BGR8, enc::RGB8, enc::BGRA8, enc::RGBA8, enc::MONO16};
     if (!kEncodings.count(image->encoding)) {
       rejections_->reject("image", "unsupported_encoding",
@@ -114,6 +117,7 @@ class SegmenterNodelet : public nodelet::Nodelet {
     std_msgs::Float32 time;
     time.data = static_cast<float>(ms);
     time_publisher_.publish(time);
+    diagnostics_->processed(ms);
     times_.push_back(ms);
     if (static_cast<int>(times_.size()) >= output_.log_every) {
       std::nth_element(times_.begin(), times_.begin() + static_cast<std::ptrdiff_t>(times_.size() / 2), times_.end());
@@ -124,6 +128,7 @@ class SegmenterNodelet : public nodelet::Nodelet {
   }
 
   std::unique_ptr<Segmenter> segmenter_;
+  std::unique_ptr<NodeletDiagnostics> diagnostics_;
   std::unique_ptr<InputRejections> rejections_;
   int classes_ = 0;
   SegmenterOutputOptions output_;

@@ -3,6 +3,7 @@
 // Mapping nodelet, reached through NodeletMappingLink) -> tf odom -> base_link and
 // nav_msgs/Odometry for every trusted pose, TrackingStatus for every frame, TrackedFrame for the path.
 #include <atomic>
+#include <set>
 
 #include <message_filters/subscriber.h>
 #include <message_filters/time_synchronizer.h>
@@ -11,8 +12,10 @@
 #include <pluginlib/class_list_macros.hpp>
 #include <std_srvs/Trigger.h>
 #include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/buffer.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
 
 #include "semantic_edge_vo/NearestNeighborField.h"
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
@@ -24,7 +27,9 @@
 #include "semantic_edge_vo/ros/input_rejections.h"
 #include "semantic_edge_vo/config/live_options.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
+#include "semantic_edge_vo/ros/nodelet_diagnostics.h"
 #include "semantic_edge_vo/ros/nodelet_mapping_link.h"
+#include "semantic_edge_vo/ros/odometry_message.h"
 #include "semantic_edge_vo/config/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
 #include "semantic_edge_vo/ros/stamp_order.h"
@@ -53,8 +58,14 @@ class TrackingNodelet : public nodelet::Nodelet {
       NODELET_ERROR_STREAM("invalid parameters, the nodelet stays inert: " << error);
       return;
     }
-    rejections_ = std::make_unique<InputRejections>(getName());
-    extrinsic_ = std::make_unique<CameraExtrinsic>(tf_.frames.base_frame, 0.0);
+    diagnostics_ = std::make_unique<NodeletDiagnostics>(node, getName());
+    rejections_ = std::make_unique<InputRejections>(getName(), [this](const std::string&) { diagnostics_->dropped(); });
+    odometry_messages_ = std::make_unique<OdometryMessageBuilder>(tf_.frames, tf_.max_twist_gap);
+    tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
+    if (tf_.publish_tf && !options_.road.enabled())
+      NODELET_INFO_STREAM("publishing " << tf_.frames.odom_frame << " -> " << tf_.frames.base_frame
+                                        << " in the odometry's arbitrary monocular scale (set camera_height for metres, "
+                                           "publish_tf:=false for nav_msgs/Odometry only)");
     // The initialisation releases the poses of every frame that waited for it at once (up to
     // initializer/max_frames + 1): the queues hold such a burst several times over.
     const std::uint32_t burst = static_cast<std::uint32_t>(4 * (options_.initializer.max_frames + 1));
@@ -78,6 +89,13 @@ class TrackingNodelet : public nodelet::Nodelet {
   }
 
   void onFrame(const SemanticEdgeFrameConstPtr& frame, const NearestNeighborFieldConstPtr& field) {
+    const ros::WallTime start = ros::WallTime::now();
+    diagnostics_->input(frame->header.seq);
+    track(frame, field);
+    diagnostics_->processed((ros::WallTime::now() - start).toSec() * 1e3);
+  }
+
+  void track(const SemanticEdgeFrameConstPtr& frame, const NearestNeighborFieldConstPtr& field) {
     tracer_.received(frame_subscriber_.getTopic(), frame.get(), frame->header.stamp);
     tracer_.received(field_subscriber_.getTopic(), field.get(), field->header.stamp);
     std::string error;
@@ -115,11 +133,10 @@ class TrackingNodelet : public nodelet::Nodelet {
       };
       OdometryOptions options = options_;
       options.road.road_classes = roadClassBits(frame->class_names);  // the intake's table: Canny's has no road
-      bool extrinsic_from_tf = false;
-      const Eigen::Isometry3d T_base_cam = extrinsic_->baseFromCamera(frame->header.frame_id, &extrinsic_from_tf);
-      if (options.road.enabled() && extrinsic_from_tf) {  // the mounting from tf, not the parameters
-        options.road.setMounting(T_base_cam.linear());
-        NODELET_INFO_STREAM("camera mounting against the road from tf (" << tf_.frames.base_frame << " -> " << frame->header.frame_id
+      resolveMounting(cameraFrameOf(frame->header));
+      if (options.road.enabled() && mounting_.from_tf) {  // the mounting from tf, not the parameters
+        options.road.setMounting(mounting_.T_base_cam.linear());
+        NODELET_INFO_STREAM("camera mounting against the road from tf (" << tf_.frames.base_frame << " -> " << mounting_frame_
                                                                          << "): pitch " << options.road.pitch_deg << " deg, roll "
                                                                          << options.road.roll_deg << " deg");
       }
@@ -128,6 +145,7 @@ class TrackingNodelet : public nodelet::Nodelet {
           std::make_shared<NodeletMappingLink>(getNodeHandle(), options, camera_, stamp_of, &class_names_, &tracer_));
       stamps_.clear();
       frame_count_ = 0;
+      odometry_messages_->restart();
     }
     if (restart_requested_.exchange(false)) odometry_->restart();
     stamps_[frame_count_] = {frame->header, frame->class_map_age};
@@ -159,33 +177,21 @@ class TrackingNodelet : public nodelet::Nodelet {
     publishStatus(*header, recent->second.class_map_age, &pose);
     if (!pose.trusted) return;  // never publish a pose that is not trusted
 
-    const std::string& camera_frame = header->frame_id;
-    bool extrinsic_from_tf = false;
-    const Eigen::Isometry3d T_base_cam = extrinsic_->baseFromCamera(camera_frame, &extrinsic_from_tf);
-    if (!extrinsic_from_tf && tf_.publish_default_camera_tf && camera_frame != announced_camera_frame_)
-      publishDefaultCameraTf(camera_frame, stamp, T_base_cam);
+    const Eigen::Isometry3d& T_base_cam = mounting_.T_base_cam;
+    if (tf_.publish_tf && !mounting_.from_tf && tf_.publish_default_camera_tf && mounting_frame_ != announced_camera_frame_)
+      publishDefaultCameraTf(stamp);
     const Eigen::Isometry3d T_odom_base = baseInOdom(pose.T_world_cam, T_base_cam);
-    if (tf_.publish_tf) {
-      geometry_msgs::TransformStamped transform = tf2::eigenToTransform(T_odom_base);
-      transform.header.stamp = stamp;
-      transform.header.frame_id = tf_.frames.odom_frame;
-      transform.child_frame_id = tf_.frames.base_frame;
-      tf_broadcaster_.sendTransform(transform);
-    }
-    auto odometry = boost::make_shared<nav_msgs::Odometry>();
-    odometry->header.stamp = stamp;
-    odometry->header.frame_id = tf_.frames.odom_frame;
-    odometry->child_frame_id = tf_.frames.base_frame;
-    odometry->pose.pose = toPoseMsg(T_odom_base);
-    // Monocular: position is up to an unknown scale; the covariance says we do not know it.
-    for (int i = 0; i < 6; ++i) odometry->pose.covariance[static_cast<std::size_t>(i * 7)] = i < 3 ? 1e3 : 1e-2;
-    odometry_publisher_.publish(nav_msgs::OdometryConstPtr(odometry));
+    if (tf_.publish_tf) publishOdomTf(stamp, T_odom_base);
+    const Matrix6d covariance = baseCovariance(pose.tracking.covariance, T_base_cam);
+    odometry_publisher_.publish(
+        nav_msgs::OdometryConstPtr(odometry_messages_->build(stamp, T_odom_base, covariance, pose.scale != ScaleState::kArbitrary)));
 
     auto tracked = boost::make_shared<TrackedFrame>();
     tracked->header.stamp = stamp;
     tracked->header.frame_id = "world";
-    tracked->camera_frame_id = camera_frame;
+    tracked->camera_frame_id = mounting_frame_;
     tracked->pose_world_camera = toPoseMsg(pose.T_world_cam);
+    tracked->pose_base_camera = toPoseMsg(T_base_cam);
     tracked->pose_trusted = true;
     tracked->keyframe_id = static_cast<std::uint32_t>(std::max(0, pose.keyframe_id));
     tracked->mean_flow_px = static_cast<float>(pose.tracking.mean_flow);
@@ -219,18 +225,77 @@ class TrackingNodelet : public nodelet::Nodelet {
       status->state = TrackingStatus::INITIALIZING;
     }
     status_publisher_.publish(TrackingStatusConstPtr(status));
+    diagnostics_->set("tracking state", stateName(status->state));
+    diagnostics_->set("scale state", status->scale_state);
+    diagnostics_->set("scale confidence", std::to_string(status->scale_confidence));
+    if (odometry_) diagnostics_->set("mapping requests dropped (total)", std::to_string(odometry_->mappingDropped()));
+    if (status->state == TrackingStatus::LOST)
+      diagnostics_->problem("lost", diagnostic_msgs::DiagnosticStatus::WARN, "tracking lost");
+    else if (status->state == TrackingStatus::TRACKING || status->state == TrackingStatus::RECOVERED)
+      diagnostics_->clear("lost");
   }
 
-  /// Without a base_link -> camera transform on tf, announce the default one so rviz can show the camera.
-  void publishDefaultCameraTf(const std::string& camera_frame, const ros::Time& stamp, const Eigen::Isometry3d& T_base_cam) {
-    geometry_msgs::TransformStamped transform = tf2::eigenToTransform(T_base_cam);
+  static std::string stateName(std::uint8_t state) {
+    switch (state) {
+      case TrackingStatus::TRACKING: return "tracking";
+      case TrackingStatus::LOST: return "lost";
+      case TrackingStatus::RECOVERED: return "recovered";
+      case TrackingStatus::UNTRUSTED: return "untrusted";
+      default: return "initializing";
+    }
+  }
+
+  /// The camera frame of a frame: the configured one, else the image's.
+  std::string cameraFrameOf(const std_msgs::Header& header) const {
+    return tf_.camera_frame.empty() ? header.frame_id : tf_.camera_frame;
+  }
+
+  /// The camera's mounting for a new odometry: from tf (the first frame waits for it up to
+  /// extrinsic_wait, later ones do not), else the optical default; what was assumed is said once.
+  void resolveMounting(const std::string& camera_frame) {
+    const double wait = waited_for_extrinsic_ ? 0.0 : tf_.extrinsic_wait;
+    waited_for_extrinsic_ = true;
+    mounting_ = resolveCameraMounting(tf_buffer_, tf_.frames.base_frame, camera_frame, wait);
+    mounting_frame_ = camera_frame;
+    if (!mounting_.assumption.empty() && warned_assumptions_.insert(mounting_.assumption).second)
+      NODELET_WARN_STREAM(mounting_.assumption);
+    else if (mounting_.from_tf)
+      NODELET_INFO_STREAM("camera extrinsic from tf: " << tf_.frames.base_frame << " -> " << camera_frame);
+  }
+
+  /// odom -> base_link, unless base_link already has another parent on tf (two parents break tf).
+  void publishOdomTf(const ros::Time& stamp, const Eigen::Isometry3d& T_odom_base) {
+    const std::string other = otherParentOnTf(tf_buffer_, tf_.frames.base_frame, tf_.frames.odom_frame);
+    if (!other.empty()) {
+      NODELET_WARN_STREAM_THROTTLE(10.0, "not publishing " << tf_.frames.odom_frame << " -> " << tf_.frames.base_frame << ": "
+                                                            << tf_.frames.base_frame << " already has the parent " << other
+                                                            << " on tf (set base_frame to the root of the vehicle's tree, "
+                                                               "or publish_tf:=false); odometry is still published");
+      return;
+    }
+    geometry_msgs::TransformStamped transform = tf2::eigenToTransform(T_odom_base);
+    transform.header.stamp = stamp;
+    transform.header.frame_id = tf_.frames.odom_frame;
+    transform.child_frame_id = tf_.frames.base_frame;
+    tf_broadcaster_.sendTransform(transform);
+  }
+
+  /// Without a base_link -> camera transform on tf, announce the assumed one so rviz can show the
+  /// camera, unless the camera frame has another parent on tf.
+  void publishDefaultCameraTf(const ros::Time& stamp) {
+    announced_camera_frame_ = mounting_frame_;
+    const std::string other = otherParentOnTf(tf_buffer_, mounting_frame_, tf_.frames.base_frame);
+    if (!other.empty()) {
+      NODELET_WARN_STREAM("not publishing the assumed " << tf_.frames.base_frame << " -> " << mounting_frame_ << ": "
+                                                         << mounting_frame_ << " already has the parent " << other << " on tf");
+      return;
+    }
+    geometry_msgs::TransformStamped transform = tf2::eigenToTransform(mounting_.T_base_cam);
     transform.header.stamp = stamp;
     transform.header.frame_id = tf_.frames.base_frame;
-    transform.child_frame_id = camera_frame;
+    transform.child_frame_id = mounting_frame_;
     static_broadcaster_.sendTransform(transform);
-    announced_camera_frame_ = camera_frame;
-    NODELET_INFO_STREAM("no " << tf_.frames.base_frame << " -> " << camera_frame
-                              << " transform on tf: publishing the optical-rotation default as a static transform");
+    NODELET_INFO_STREAM("publishing the assumed " << tf_.frames.base_frame << " -> " << mounting_frame_ << " as a static transform");
   }
 
   // Parameters (read in onInit, constant afterwards).
@@ -239,8 +304,11 @@ class TrackingNodelet : public nodelet::Nodelet {
   OdometryOptions options_;
   MappingMode mapping_mode_ = MappingMode::kDeterministic;
 
+  std::unique_ptr<NodeletDiagnostics> diagnostics_;
   std::unique_ptr<InputRejections> rejections_;
-  std::unique_ptr<CameraExtrinsic> extrinsic_;
+  std::unique_ptr<OdometryMessageBuilder> odometry_messages_;
+  tf2_ros::Buffer tf_buffer_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   MessageTracer tracer_;
   message_filters::Subscriber<SemanticEdgeFrame> frame_subscriber_;
   message_filters::Subscriber<NearestNeighborField> field_subscriber_;
@@ -249,11 +317,15 @@ class TrackingNodelet : public nodelet::Nodelet {
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   std::string announced_camera_frame_;
+  std::set<std::string> warned_assumptions_;
   ros::ServiceServer reset_service_;
   std::atomic<bool> restart_requested_{false};  ///< set by the reset service, taken by the frame callback
 
   // Frame callback only (the synchronizer calls it serially).
   PinholeCamera camera_;
+  CameraMounting mounting_;     ///< of the current odometry
+  std::string mounting_frame_;  ///< its camera frame
+  bool waited_for_extrinsic_ = false;
   std::unique_ptr<Odometry> odometry_;
   StampOrder stamp_order_{0.0};  ///< the intake passes frames in order: any step back is a new pass
   struct RecentFrame {

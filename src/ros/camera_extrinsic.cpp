@@ -1,20 +1,14 @@
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
 
+#include <iomanip>
+#include <sstream>
+
 #include <tf2_eigen/tf2_eigen.h>
 #include <tf2_ros/buffer.h>
-#include <tf2_ros/transform_listener.h>
 
 namespace semantic_edge_vo {
 
-CameraExtrinsic::CameraExtrinsic(std::string base_frame, double lookup_timeout_seconds)
-    : base_frame_(std::move(base_frame)),
-      timeout_(lookup_timeout_seconds),
-      buffer_(std::make_unique<tf2_ros::Buffer>()),
-      listener_(std::make_unique<tf2_ros::TransformListener>(*buffer_)) {}
-
-CameraExtrinsic::~CameraExtrinsic() = default;
-
-Eigen::Isometry3d CameraExtrinsic::opticalDefault() {
+Eigen::Isometry3d opticalDefault() {
   Eigen::Matrix3d rotation;
   rotation << 0, 0, 1, -1, 0, 0, 0, -1, 0;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
@@ -22,23 +16,47 @@ Eigen::Isometry3d CameraExtrinsic::opticalDefault() {
   return pose;
 }
 
-Eigen::Isometry3d CameraExtrinsic::baseFromCamera(const std::string& camera_frame, bool* from_tf) {
-  if (camera_frame != cached_frame_) {
-    cached_frame_ = camera_frame;
-    cached_ = opticalDefault();
-    cached_from_tf_ = false;
+std::string opticalFrameDoubt(const Eigen::Matrix3d& R_base_cam) {
+  const Eigen::Vector3d y = R_base_cam.col(1);
+  if (y.z() < -0.5) return "";  // y down (within 60 degrees)
+  std::ostringstream doubt;
+  doubt << std::fixed << std::setprecision(2) << "its y axis points (" << y.x() << ", " << y.y() << ", " << y.z()
+        << ") in base_link, not down: the images must carry the camera's optical frame (z forward, x right, y down; "
+           "REP-103's *_optical_frame), not its body frame";
+  return doubt.str();
+}
+
+CameraMounting resolveCameraMounting(const tf2_ros::Buffer& tf, const std::string& base_frame, const std::string& camera_frame,
+                                     double wait) {
+  CameraMounting mounting;
+  if (camera_frame.empty() || camera_frame == base_frame) {
+    mounting.T_base_cam = opticalDefault();
+    mounting.assumption = "the images carry " + (camera_frame.empty() ? std::string("no frame_id") : "base_link's frame_id") +
+                          ": assuming a forward-facing camera with its optical axes at " + base_frame + "'s origin";
+    return mounting;
   }
-  if (!cached_from_tf_ && !camera_frame.empty() && camera_frame != base_frame_) {
-    try {
-      cached_ = tf2::transformToEigen(
-          buffer_->lookupTransform(base_frame_, camera_frame, ros::Time(0), ros::Duration(timeout_)));
-      cached_from_tf_ = true;
-    } catch (const tf2::TransformException&) {
-      // No extrinsic on tf (yet): keep the optical default.
-    }
+  try {
+    mounting.T_base_cam = tf2::transformToEigen(tf.lookupTransform(base_frame, camera_frame, ros::Time(0), ros::Duration(wait)));
+    mounting.from_tf = true;
+    const std::string doubt = opticalFrameDoubt(mounting.T_base_cam.linear());
+    if (!doubt.empty()) mounting.assumption = "camera frame " + camera_frame + " does not look optical: " + doubt;
+  } catch (const tf2::TransformException&) {
+    std::ostringstream said;
+    said << "no " << base_frame << " -> " << camera_frame << " transform on tf within " << wait << " s: assuming a forward-facing camera, " << camera_frame << " an optical frame (z forward, x right, y down) at "
+         << base_frame << "'s origin (camera z = " << base_frame << " x). Publish the real extrinsic on tf (e.g. "
+         << "static_transform_publisher) or raise tracking/extrinsic_wait";
+    if (camera_frame.find("optical") == std::string::npos)
+      said << "; note that " << camera_frame << " is not named like an optical frame";
+    mounting.T_base_cam = opticalDefault();
+    mounting.assumption = said.str();
   }
-  if (from_tf) *from_tf = cached_from_tf_;
-  return cached_;
+  return mounting;
+}
+
+std::string otherParentOnTf(const tf2_ros::Buffer& tf, const std::string& child, const std::string& parent) {
+  std::string found;
+  if (!tf._getParent(child, ros::Time(0), found) || found == parent) return "";
+  return found;
 }
 
 }  // namespace semantic_edge_vo

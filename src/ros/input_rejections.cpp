@@ -5,6 +5,7 @@
 namespace semantic_edge_vo {
 
 void InputRejections::reject(const std::string& what, const std::string& reason_name, const std::string& detail) {
+  if (on_reject_) on_reject_(reason_name);
   std::lock_guard<std::mutex> lock(mutex_);
   ++total_;
   Reason& reason = reasons_[reason_name];

@@ -122,7 +122,7 @@ std::string readInputs(const Arguments& args, sevo::Trajectory* gt, sevo::Trajec
     sources->gt_format += " + times " + args.gt_times;
   }
   if (fs::path(args.est_path).extension() == ".bag") {
-    const Eigen::Isometry3d T_base_cam = args.bag_extrinsic == "optical" ? sevo::CameraExtrinsic::opticalDefault()
+    const Eigen::Isometry3d T_base_cam = args.bag_extrinsic == "optical" ? sevo::opticalDefault()
                                                                          : Eigen::Isometry3d::Identity();
     error = sevo::readOdometryBag(args.est_path, args.bag_topic, T_base_cam, est);
     sources->est_format = "bag " + args.bag_topic + " (" + args.bag_extrinsic + " extrinsic)";

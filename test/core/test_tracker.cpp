@@ -108,5 +108,31 @@ TEST(Tracker, TriesTheOtherGuessesWhenTheFirstTracksWorseThanThePreviousFrame) {
   EXPECT_EQ(kept.guess, 0);
 }
 
+TEST(Tracker, TheCovarianceGrowsWhenFewerPointsConstrainThePose) {
+  synthetic::SyntheticSequence sequence(synthetic::SyntheticSequenceOptions::forScene(synthetic::SceneType::kCity, 3));
+  FrameBuilderOptions options;
+  options.use_field = false;
+  const FrameBuilder builder(options, sequence.camera(), ClassTable::cityscapes().names());
+  ExtractionError error;
+  const synthetic::SyntheticFrame truth_kf = sequence.frame(10), truth = sequence.frame(11);
+  const auto full = exactKeyframe(builder.build(10, 1.0, truth_kf.gray, ClassEvidence(), &error), truth_kf);
+  auto sparse = std::make_shared<Keyframe>(*full);
+  sparse->points.clear();
+  for (std::size_t i = 0; i < full->points.size(); i += 10) sparse->points.push_back(full->points[i]);
+  const auto frame = builder.build(11, 1.1, truth.gray, ClassEvidence(), &error);
+  const Eigen::Isometry3d T_true = truth.T_world_cam.inverse() * truth_kf.T_world_cam;
+  const auto track = [&](const std::shared_ptr<Keyframe>& keyframe) {
+    Tracker tracker(TrackerOptions{});
+    tracker.setKeyframe(keyframe);
+    return tracker.track(*frame->pyramid, nullptr, {se3Exp(0.9 * se3Log(T_true))});
+  };
+  const TrackingResult with_all = track(full), with_tenth = track(sparse);
+  ASSERT_TRUE(with_all.ok && with_tenth.ok);
+  const double all = with_all.covariance.topLeftCorner<3, 3>().trace(), tenth = with_tenth.covariance.topLeftCorner<3, 3>().trace();
+  EXPECT_GT(all, 0.0);
+  EXPECT_GT(tenth, 4.0 * all) << "a tenth of the points must leave the position several times less certain";
+  EXPECT_TRUE(with_all.covariance.isApprox(with_all.covariance.transpose()));
+}
+
 }  // namespace
 }  // namespace semantic_edge_vo

@@ -10,6 +10,7 @@
 // and the trajectory depends on timing: the same passes, against the ground truth only.
 // With a camera height (bag_odometry_metric.test, a drive long enough for the road to set the scale)
 // the graph must give run_sequence --camera-height's trajectory, in metres over the last frames.
+// Each nav_msgs/Odometry also carries a forward twist and a covariance from its frame's tracking.
 // Accuracy bound: Sim(3) ATE under 0.5 % of the path.
 // Monocular VO such as DSO or ORB-SLAM drifts 1-2 % of the distance on KITTI; 0.5 % over a 24 m
 // stretch is stricter, and still seven times what this odometry scores here (0.07 %), while a
@@ -68,6 +69,43 @@ std::vector<Eigen::Isometry3d> straightLine(const std::vector<Eigen::Isometry3d>
   return line;
 }
 
+/// nav_msgs/Odometry beyond the pose: the car drives forward along base_link's x at a steady speed,
+/// so the twist says so once a previous pose is known; the covariance comes from each frame's
+/// tracking (it changes from frame to frame), rotations well known, positions unknown (1e6) until
+/// the scale is metric.
+void checkTwistsAndCovariances(int pass, const std::vector<ros::Time>& stamps,
+                               const std::map<ros::Time, nav_msgs::OdometryConstPtr>& messages, bool metric_run) {
+  int forward = 0, with_twist = 0, origins = 0;
+  double smallest_yaw_variance = 1e9, largest_yaw_variance = 0.0;
+  for (const ros::Time& stamp : stamps) {
+    const auto found = messages.find(stamp);
+    if (found == messages.end()) continue;
+    const nav_msgs::Odometry& m = *found->second;
+    EXPECT_EQ(m.header.frame_id, "odom");
+    EXPECT_EQ(m.child_frame_id, "base_link");
+    const double yaw_variance = m.pose.covariance[35];
+    if (yaw_variance == 0.0) {  // a map's first frame: it defines the map
+      ++origins;
+      continue;
+    }
+    EXPECT_TRUE(yaw_variance > 0.0 && yaw_variance < 1e-2) << "pass " << pass << ": yaw variance " << yaw_variance << " rad^2";
+    smallest_yaw_variance = std::min(smallest_yaw_variance, yaw_variance);
+    largest_yaw_variance = std::max(largest_yaw_variance, yaw_variance);
+    if (!metric_run) {
+      EXPECT_EQ(m.pose.covariance[0], 1e6) << "pass " << pass << ": positions in an arbitrary scale are unknown";
+    }
+    if (m.twist.covariance[35] >= 1e6) continue;  // no previous pose (the first, or after a restart)
+    ++with_twist;
+    forward += m.twist.twist.linear.x > 5.0 * std::abs(m.twist.twist.linear.y);
+  }
+  std::printf("bag_odometry, pass %d: %d of %d poses with a twist, %d of them forward; yaw variance %.2e - %.2e rad^2\n", pass,
+              with_twist, static_cast<int>(stamps.size()), forward, smallest_yaw_variance, largest_yaw_variance);
+  EXPECT_GT(with_twist, static_cast<int>(stamps.size()) / 2) << "pass " << pass;
+  EXPECT_LE(origins, 2) << "pass " << pass << ": only a map's first frame has no tracking covariance";
+  EXPECT_EQ(forward, with_twist) << "pass " << pass << ": the car drives forward, along base_link's x";
+  EXPECT_GT(largest_yaw_variance, 1.01 * smallest_yaw_variance) << "pass " << pass << ": the covariance must come from each frame's tracking";
+}
+
 TEST(BagOdometry, GraphGivesRunSequencesTrajectoryWithinHalfAPercentOfThePath) {
   const std::string dir = ::testing::TempDir() + "/bag_odometry";
   std::filesystem::remove_all(dir);
@@ -83,6 +121,7 @@ TEST(BagOdometry, GraphGivesRunSequencesTrajectoryWithinHalfAPercentOfThePath) {
   ros::NodeHandle node;
   std::mutex mutex;
   std::map<ros::Time, Eigen::Isometry3d> odometry;  // T_odom_base per image stamp
+  std::map<ros::Time, nav_msgs::OdometryConstPtr> odometry_messages;  // their twists and covariances
   std::map<ros::Time, std::string> states;  // every status of a frame, in order (a late pose brings a second one)
   std::string last_scale_state;
   ros::Subscriber odometry_subscriber = node.subscribe<nav_msgs::Odometry>("/odometry", 100, [&](const nav_msgs::OdometryConstPtr& m) {
@@ -90,6 +129,7 @@ TEST(BagOdometry, GraphGivesRunSequencesTrajectoryWithinHalfAPercentOfThePath) {
     Eigen::Isometry3d pose;
     tf2::fromMsg(m->pose.pose, pose);
     odometry[m->header.stamp] = pose;
+    odometry_messages[m->header.stamp] = m;
   });
   ros::Subscriber status_subscriber = node.subscribe<TrackingStatus>("/tracking_status", 100, [&](const TrackingStatusConstPtr& s) {
     std::lock_guard<std::mutex> lock(mutex);
@@ -166,7 +206,7 @@ TEST(BagOdometry, GraphGivesRunSequencesTrajectoryWithinHalfAPercentOfThePath) {
   // Graph poses back in the first camera's frame (the graph ran with the optical default extrinsic).
   // `against_offline`: the graph's trajectory must also be run_sequence's.
   const auto compare = [&](int pass, const std::vector<ros::Time>& stamps, bool against_offline) {
-    const Eigen::Isometry3d T_base_cam = CameraExtrinsic::opticalDefault();
+    const Eigen::Isometry3d T_base_cam = opticalDefault();
     const std::vector<Eigen::Isometry3d> line = straightLine(truth.poses);
     std::vector<Eigen::Isometry3d> graph_poses, offline_poses, true_poses, line_poses;
     std::string missing;
@@ -194,10 +234,12 @@ TEST(BagOdometry, GraphGivesRunSequencesTrajectoryWithinHalfAPercentOfThePath) {
                 "%.2e map units; Sim(3) ATE graph %.3f m, straight line %.3f m, run_sequence %.3f m\n",
                 pass, graph_poses.size(), kFrames, path, missing.c_str(), largest_difference, graph_ate, line_ate, simAte(true_poses, offline_poses));
     // (In parallel mode timing decides which frames mapping takes: no trajectory to compare with.)
-    if (deterministic && against_offline)
+    if (deterministic && against_offline) {
       EXPECT_LT(largest_difference, 1e-6) << "pass " << pass << ": the graph and run_sequence gave different trajectories";
-    else if (deterministic)
+    } else if (deterministic) {
       EXPECT_GT(largest_difference, 1e-6) << "pass " << pass << ": the reset must have started a new map";
+    }
+    checkTwistsAndCovariances(pass, stamps, odometry_messages, camera_height > 0.0);
     if (camera_height == 0.0) {
       EXPECT_LT(graph_ate, 0.005 * path) << "pass " << pass << ": Sim(3) ATE above 0.5 % of the path";
       return;
@@ -222,6 +264,7 @@ TEST(BagOdometry, GraphGivesRunSequencesTrajectoryWithinHalfAPercentOfThePath) {
     {
       std::lock_guard<std::mutex> lock(mutex);
       odometry.clear();
+      odometry_messages.clear();
       states.clear();
     }
     std::vector<ros::Time> stamps;

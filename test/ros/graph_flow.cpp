@@ -1,9 +1,11 @@
-// rostest: messages flow through every stage at the input rate, zero-copy, with correct frames and stamps.
+// rostest: messages flow through every stage at the input rate, zero-copy, with correct frames and
+// stamps, and every nodelet reports its health on /diagnostics.
 #include <map>
 #include <mutex>
 #include <set>
 #include <sstream>
 
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
 #include <nav_msgs/Path.h>
@@ -80,6 +82,12 @@ TEST(GraphFlow, EveryStageAtInputRateZeroCopyWithStampedTf) {
     std::lock_guard<std::mutex> lock(status_mutex);
     states[s->header.stamp] = s->state;
   });
+  std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;  // the latest of each nodelet
+  ros::Subscriber diagnostics_subscriber =
+      node.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 100, [&](const diagnostic_msgs::DiagnosticArrayConstPtr& a) {
+        std::lock_guard<std::mutex> lock(status_mutex);
+        for (const auto& status : a->status) diagnostics[status.name] = status;
+      });
   tf2_ros::Buffer tf_buffer(ros::Duration(60.0));
   tf2_ros::TransformListener tf_listener(tf_buffer);
   sensor_msgs::PointCloud2ConstPtr cloud;
@@ -187,6 +195,23 @@ TEST(GraphFlow, EveryStageAtInputRateZeroCopyWithStampedTf) {
   for (const auto& f : cloud->fields) fields.push_back(f.name);
   EXPECT_EQ(fields, (std::vector<std::string>{"x", "y", "z", "label", "rgb"}));
   EXPECT_GT(cloud->width * cloud->height, 0u);
+
+  // 4. Every nodelet reports its health on /diagnostics: inputs at the camera's rate, none lost.
+  std::lock_guard<std::mutex> lock(status_mutex);
+  for (const std::string name : {"/edge_intake", "/nearest_neighbor_field", "/tracking", "/mapping"}) {
+    ASSERT_TRUE(diagnostics.count(name)) << "no diagnostics from " << name;
+    const diagnostic_msgs::DiagnosticStatus& status = diagnostics[name];
+    std::map<std::string, std::string> values;
+    for (const auto& pair : status.values) values[pair.key] = pair.value;
+    EXPECT_LE(status.level, diagnostic_msgs::DiagnosticStatus::WARN) << name << ": " << status.message;
+    EXPECT_NEAR(std::stod(values["input rate (Hz)"]), 10.0, 3.0) << name;
+    EXPECT_EQ(values["inputs lost in queues (total)"], "0") << name;
+    EXPECT_TRUE(values.count("processing time median (ms)")) << name;
+    if (name == "/tracking") {
+      EXPECT_EQ(values["tracking state"], "tracking");
+      EXPECT_EQ(values["scale state"], "arbitrary");
+    }
+  }
 }
 
 }  // namespace

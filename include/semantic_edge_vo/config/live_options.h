@@ -15,6 +15,9 @@ struct IntakeStreamOptions {
   int queue_size = 5;                            ///< image/camera_info subscription queue, messages
   std::string transport = "raw";                 ///< raw | compressed
   double time_jump_back = 1.0;                   ///< s: a stamp this far back starts the graph over
+  double camera_info_tolerance = 0.005;          ///< s between an image's stamp and its camera_info's
+  double camera_info_wait = 0.5;                 ///< s an image waits for its camera_info (wall time)
+  double image_timeout = 3.0;                    ///< s without an image before the watchdog reports an error
   bool rectify = false;                          ///< undistort with camera_info first
   std::string class_format = "probabilities";    ///< probabilities | labels | bitmask
   std::string edge_source = "canny";             ///< fused: canny | topic
@@ -29,7 +32,7 @@ struct IntakeStreamOptions {
   std::string validate() const;
 };
 
-/// The frames the Tracking and Mapping nodelets publish in (REP-105).
+/// The frames the Tracking nodelet publishes in (REP-105).
 struct FrameNames {
   std::string odom_frame = "odom", base_frame = "base_link";
 
@@ -39,8 +42,11 @@ struct FrameNames {
 /// The Tracking nodelet's frames on tf.
 struct TfOptions {
   FrameNames frames;
-  bool publish_tf = true;
+  std::string camera_frame;               ///< the camera's optical frame (empty: each image's frame_id)
+  bool publish_tf = true;                 ///< false: nav_msgs/Odometry only, nothing on tf
   bool publish_default_camera_tf = true;  ///< without base_link -> camera on tf, publish the optical-rotation default
+  double extrinsic_wait = 0.5;            ///< s the first frame waits for base_link -> camera on tf
+  double max_twist_gap = 1.0;             ///< s between two published poses beyond which the twist is unknown
 
   std::string validate() const;
 };
@@ -56,7 +62,7 @@ struct LiveMappingOptions {
 
 /// The Mapping nodelet's map and path.
 struct MapOutputOptions {
-  FrameNames frames;
+  std::string odom_frame = FrameNames().odom_frame;  ///< of the map and the path: Tracking's
   int queue_size = 20;           ///< messages in front of the mapping thread
   double voxel_size = 0.1;       ///< map units
   int max_map_points = 200000;

@@ -41,6 +41,10 @@ struct TrackingResult {
   double photometric_rmse = 0.0;     ///< inliers, gray levels / px
   double edge_rmse = 0.0;            ///< inliers, full-resolution px
   double mean_flow = 0.0;            ///< mean displacement of the keyframe points, full-resolution px
+  /// Covariance of the solution, of xi in T_cam_kf = exp(xi) * T_cam_kf (camera axes): the level-0
+  /// Gauss-Newton Hessian's inverse, scaled (solutionCovariance; docs/architecture.md). Zero where
+  /// no tracking estimated the pose: a map's first frame, which defines it.
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
 
   /// Photometric inliers over photometric residuals (level 0).
   double inlierRatio() const { return static_cast<double>(photometric_inliers) / std::max(1, photometric_residuals); }

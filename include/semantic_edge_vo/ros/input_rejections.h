@@ -1,4 +1,5 @@
 #pragma once
+#include <functional>
 #include <map>
 #include <mutex>
 #include <string>
@@ -11,8 +12,10 @@ namespace semantic_edge_vo {
 /// that one bad stream does not hide another and does not flood the log. Thread-safe.
 class InputRejections {
  public:
-  InputRejections(std::string owner, double throttle_seconds = 5.0)
-      : owner_(std::move(owner)), throttle_seconds_(throttle_seconds) {}
+  /// @param[in] on_reject told each refusal's reason name (e.g. diagnostics counting drops)
+  explicit InputRejections(std::string owner, std::function<void(const std::string&)> on_reject = nullptr,
+                           double throttle_seconds = 5.0)
+      : owner_(std::move(owner)), on_reject_(std::move(on_reject)), throttle_seconds_(throttle_seconds) {}
 
   /// Logs "<owner>: dropped <what>: <reason_name>: <detail>" at most once per throttle period per reason.
   void reject(const std::string& what, const std::string& reason_name, const std::string& detail);
@@ -28,6 +31,7 @@ class InputRejections {
     unsigned long logged_at_count = 0;
   };
   std::string owner_;
+  std::function<void(const std::string&)> on_reject_;
   double throttle_seconds_;
   mutable std::mutex mutex_;
   std::map<std::string, Reason> reasons_;

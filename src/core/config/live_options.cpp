@@ -5,6 +5,8 @@ namespace semantic_edge_vo {
 std::string IntakeStreamOptions::validate() const {
   if (queue_size < 1) return "queue_size must be >= 1";
   if (!(time_jump_back > 0.0)) return "time_jump_back must be > 0 s";
+  if (!(camera_info_tolerance >= 0.0 && camera_info_wait > 0.0 && image_timeout > 0.0))
+    return "camera_info_tolerance must be >= 0 s, camera_info_wait and image_timeout > 0 s";
   if (transport != "raw" && transport != "compressed") return "transport must be raw or compressed (got '" + transport + "')";
   if (class_format != "probabilities" && class_format != "labels" && class_format != "bitmask")
     return "class_format must be probabilities, labels or bitmask (got '" + class_format + "')";
@@ -23,7 +25,11 @@ std::string FrameNames::validate() const {
   return "";
 }
 
-std::string TfOptions::validate() const { return frames.validate(); }
+std::string TfOptions::validate() const {
+  if (const std::string error = frames.validate(); !error.empty()) return error;
+  if (!(extrinsic_wait >= 0.0 && max_twist_gap > 0.0)) return "extrinsic_wait must be >= 0 s and max_twist_gap > 0 s";
+  return "";
+}
 
 std::string LiveMappingOptions::validate() const {
   if (mapping_mode != "parallel" && mapping_mode != "deterministic")
@@ -32,7 +38,7 @@ std::string LiveMappingOptions::validate() const {
 }
 
 std::string MapOutputOptions::validate() const {
-  if (const std::string error = frames.validate(); !error.empty()) return error;
+  if (odom_frame.empty()) return "odom_frame must be non-empty";
   if (queue_size < 1 || max_map_points < 1 || max_path_poses < 1) return "queue_size, max_map_points and max_path_poses must be >= 1";
   if (!(voxel_size > 0.0)) return "voxel_size must be > 0";
   return "";
@@ -51,6 +57,9 @@ std::string loadIntakeStreamOptions(ParameterLoader* loader, IntakeStreamOptions
   loader->load("queue_size", &options->queue_size, "messages");
   loader->load("transport", &options->transport, "(raw | compressed)");
   loader->load("time_jump_back", &options->time_jump_back, "s");
+  loader->load("camera_info_tolerance", &options->camera_info_tolerance, "s");
+  loader->load("camera_info_wait", &options->camera_info_wait, "s (wall time)");
+  loader->load("image_timeout", &options->image_timeout, "s (wall time)");
   loader->load("rectify", &options->rectify, "(undistort with camera_info's D, K, R, P)");
   loader->load("class_format", &options->class_format, "(probabilities | labels | bitmask)");
   loader->load("edge_source", &options->edge_source, "(canny | topic; fused)");
@@ -76,8 +85,11 @@ void loadFrameNames(ParameterLoader* loader, FrameNames* frames) {
 
 std::string loadTfOptions(ParameterLoader* loader, TfOptions* options) {
   loadFrameNames(loader, &options->frames);
+  loader->load("camera_frame", &options->camera_frame, "(empty: each image's frame_id)");
   loader->load("publish_tf", &options->publish_tf);
   loader->load("publish_default_camera_tf", &options->publish_default_camera_tf);
+  loader->load("extrinsic_wait", &options->extrinsic_wait, "s");
+  loader->load("max_twist_gap", &options->max_twist_gap, "s");
   return options->validate();
 }
 
@@ -87,7 +99,7 @@ std::string loadLiveMappingOptions(ParameterLoader* loader, LiveMappingOptions* 
 }
 
 std::string loadMapOutputOptions(ParameterLoader* loader, MapOutputOptions* options) {
-  loadFrameNames(loader, &options->frames);
+  loader->load("odom_frame", &options->odom_frame, "(keep equal to tracking/odom_frame)");
   loader->load("queue_size", &options->queue_size, "messages");
   loader->load("voxel_size", &options->voxel_size, "map units (m up to the monocular scale)");
   loader->load("max_map_points", &options->max_map_points, "points");

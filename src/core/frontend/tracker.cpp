@@ -9,6 +9,7 @@
 
 #include "semantic_edge_vo/fields/nearest_neighbor_field.h"
 #include "semantic_edge_vo/common/parallel_slices.h"
+#include "semantic_edge_vo/common/pose_uncertainty.h"
 #include "semantic_edge_vo/frontend/point_sampler.h"
 
 namespace semantic_edge_vo {
@@ -240,7 +241,11 @@ TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFi
   const auto refine = [&](TrackingResult* attempt, int from_level) {
     for (int level = from_level; level >= 0; --level)
       optimizeLevel(points, level, frame, field, prior, &attempt->T_cam_kf, &attempt->iterations);
-    return evaluate(points, 0, attempt->T_cam_kf, frame, field, prior, nullptr, attempt);
+    Normal normal;
+    const double cost = evaluate(points, 0, attempt->T_cam_kf, frame, field, prior, &normal, attempt);
+    // A point's pattern pixels share its depth and overlap in the image: one measurement, not kPattern.
+    attempt->covariance = solutionCovariance(normal.H, cost, attempt->photometric_residuals + attempt->edge_residuals, kPattern);
+    return cost;
   };
   TrackingResult result;
   result.T_cam_kf = candidates[0];

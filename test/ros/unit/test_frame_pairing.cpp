@@ -1,16 +1,11 @@
-#include <boost/make_shared.hpp>
 #include <gtest/gtest.h>
 
 #include "semantic_edge_vo/ros/frame_pairing.h"
+#include "stamped_messages.h"
 
 namespace semantic_edge_vo {
 namespace {
 
-sensor_msgs::ImageConstPtr imageAt(double stamp) {
-  auto image = boost::make_shared<sensor_msgs::Image>();
-  image->header.stamp = ros::Time(stamp);
-  return image;
-}
 const sensor_msgs::CameraInfoConstPtr kInfo = boost::make_shared<sensor_msgs::CameraInfo>();
 
 TEST(FramePairing, PairsByStampInEitherOrderAndReleasesInStampOrder) {
