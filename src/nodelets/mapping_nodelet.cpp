@@ -29,6 +29,7 @@
 #include "semantic_edge_vo/ros/nodelet_diagnostics.h"
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
+#include "semantic_edge_vo/ros/map_files.h"
 #include "semantic_edge_vo/config/live_options.h"
 #include "semantic_edge_vo/ros/mapping_messages.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
@@ -102,6 +103,7 @@ class MappingNodelet : public nodelet::Nodelet {
     outcome_publisher_ = node.advertise<MappingOutcomeMessage>("mapping_outcome", 1000);
     tracked_subscriber_ = node.subscribe("tracked_frame", 100, &MappingNodelet::onTrackedFrame, this);  // late poses come in bursts
     worker_ = std::thread(&MappingNodelet::run, this);
+    save_service_ = private_node.advertiseService("save_map", &MappingNodelet::onSaveMap, this);
     // Requests on a thread of their own: tracking may wait for their outcomes in its callback, and
     // they must not wait for the manager's threads. Deep: the bound is the mapper's queue.
     ros::NodeHandle request_node(node);
@@ -296,7 +298,7 @@ class MappingNodelet : public nodelet::Nodelet {
     for (const auto& entry : voxels_) points.push_back(entry.second);
     for (const MapKeyframe& keyframe : map.keyframes)
       for (const MapPointOut& point : pointsOf(keyframe, camera, T_base_cam, map.class_names)) points.push_back(point);
-    publishCloud(points, map.header.stamp);
+    publishCloud(points, map.header.stamp, map.class_names);
   }
 
   void commit(const MapPointOut& point) {
@@ -311,7 +313,7 @@ class MappingNodelet : public nodelet::Nodelet {
     }
   }
 
-  void publishCloud(const std::vector<MapPointOut>& points, const ros::Time& stamp) {
+  void publishCloud(const std::vector<MapPointOut>& points, const ros::Time& stamp, const std::vector<std::string>& class_names) {
     auto cloud = boost::make_shared<sensor_msgs::PointCloud2>();
     cloud->header.stamp = stamp;
     cloud->header.frame_id = options_.odom_frame;
@@ -335,6 +337,25 @@ class MappingNodelet : public nodelet::Nodelet {
       ++x, ++label, ++rgb;
     }
     cloud_publisher_.publish(sensor_msgs::PointCloud2ConstPtr(cloud));
+    std::lock_guard<std::mutex> lock(saved_mutex_);
+    last_cloud_ = cloud;
+    last_cloud_classes_ = class_names;
+  }
+
+  /// The semantic edge map as published last (committed voxels and the window), as PCD and PLY.
+  bool onSaveMap(SaveFiles::Request& request, SaveFiles::Response& response) {
+    sensor_msgs::PointCloud2ConstPtr cloud;
+    std::vector<std::string> class_names;
+    {
+      std::lock_guard<std::mutex> lock(saved_mutex_);
+      cloud = last_cloud_;
+      class_names = last_cloud_classes_;
+    }
+    serveSaveFiles(request, &response, [&](const std::string& directory, std::vector<std::string>* files) {
+      return cloud ? writeMapFiles(*cloud, class_names, directory, files) : std::string("no map yet: the odometry has not initialised");
+    });
+    NODELET_INFO_STREAM("save_map: " << (cloud ? cloud->width : 0u) << " points: " << response.message);
+    return true;
   }
 
   // Parameters (read in onInit, constant afterwards).
@@ -346,6 +367,10 @@ class MappingNodelet : public nodelet::Nodelet {
   MessageTracer tracer_;
   ros::Publisher cloud_publisher_, path_publisher_, map_publisher_, outcome_publisher_;
   ros::Subscriber tracked_subscriber_;
+  ros::ServiceServer save_service_;
+  std::mutex saved_mutex_;  // guards the last cloud (the worker publishes it, the save service reads it)
+  sensor_msgs::PointCloud2ConstPtr last_cloud_;
+  std::vector<std::string> last_cloud_classes_;
 
   // The requests' thread (the mapper's outcomes come on the mapping thread).
   ros::CallbackQueue request_queue_;

@@ -3,6 +3,7 @@
 // Mapping nodelet, reached through NodeletMappingLink) -> tf odom -> base_link and
 // nav_msgs/Odometry for every trusted pose, TrackingStatus for every frame, TrackedFrame for the path.
 #include <atomic>
+#include <mutex>
 #include <set>
 
 #include <message_filters/subscriber.h>
@@ -22,9 +23,11 @@
 #include "semantic_edge_vo/TrackedFrame.h"
 #include "semantic_edge_vo/TrackingStatus.h"
 #include "semantic_edge_vo/backend/odometry.h"
+#include "semantic_edge_vo/backend/trajectory_record.h"
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
+#include "semantic_edge_vo/ros/map_files.h"
 #include "semantic_edge_vo/config/live_options.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
 #include "semantic_edge_vo/ros/nodelet_diagnostics.h"
@@ -78,6 +81,7 @@ class TrackingNodelet : public nodelet::Nodelet {
     sync_ = std::make_unique<Sync>(frame_subscriber_, field_subscriber_, 20);
     sync_->registerCallback(&TrackingNodelet::onFrame, this);
     reset_service_ = getPrivateNodeHandle().advertiseService("reset", &TrackingNodelet::onReset, this);
+    save_service_ = getPrivateNodeHandle().advertiseService("save_trajectory", &TrackingNodelet::onSaveTrajectory, this);
   }
 
   bool onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
@@ -85,6 +89,20 @@ class TrackingNodelet : public nodelet::Nodelet {
     response.success = true;
     response.message = "the odometry initialises again from the next frame; odom continues where it is";
     NODELET_INFO_STREAM("reset: " << response.message);
+    return true;
+  }
+
+  /// Every frame's camera pose since the odometry started (KITTI, TUM) and which to trust (poses_flags.txt).
+  bool onSaveTrajectory(SaveFiles::Request& request, SaveFiles::Response& response) {
+    TrajectoryRecord record;
+    {
+      std::lock_guard<std::mutex> lock(record_mutex_);
+      record = record_;
+    }
+    serveSaveFiles(request, &response, [&](const std::string& directory, std::vector<std::string>* files) {
+      return record.write(directory, files);
+    });
+    NODELET_INFO_STREAM("save_trajectory: " << record.size() << " poses: " << response.message);
     return true;
   }
 
@@ -127,6 +145,11 @@ class TrackingNodelet : public nodelet::Nodelet {
         for (const FramePose& pose : odometry_->flush()) publishPose(pose);
       camera_ = camera;
       odometry_.reset();  // its link first: one odometry's requests at a time
+      {
+        std::lock_guard<std::mutex> lock(record_mutex_);
+        if (record_.size() > 0) NODELET_INFO_STREAM("the saved trajectory starts over with the new odometry");
+        record_.clear();
+      }
       const auto stamp_of = [this](int index) {
         const auto recent = stamps_.find(index);
         return recent != stamps_.end() ? recent->second.header.stamp : ros::Time();
@@ -174,6 +197,10 @@ class TrackingNodelet : public nodelet::Nodelet {
     if (recent == stamps_.end()) return;
     const std_msgs::Header* header = &recent->second.header;
     const ros::Time stamp = header->stamp;
+    {
+      std::lock_guard<std::mutex> lock(record_mutex_);
+      record_.add(pose, stamp.toSec());
+    }
     publishStatus(*header, recent->second.class_map_age, &pose);
     if (!pose.trusted) return;  // never publish a pose that is not trusted
 
@@ -318,7 +345,9 @@ class TrackingNodelet : public nodelet::Nodelet {
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   std::string announced_camera_frame_;
   std::set<std::string> warned_assumptions_;
-  ros::ServiceServer reset_service_;
+  ros::ServiceServer reset_service_, save_service_;
+  std::mutex record_mutex_;  // guards record_ (the frame callback adds, the save service reads)
+  TrajectoryRecord record_;
   std::atomic<bool> restart_requested_{false};  ///< set by the reset service, taken by the frame callback
 
   // Frame callback only (the synchronizer calls it serially).

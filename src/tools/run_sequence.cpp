@@ -16,10 +16,11 @@
 #include "semantic_edge_vo/edges/class_map_carrier.h"
 #include "semantic_edge_vo/eval/keyframe_depth_report.h"
 #include "semantic_edge_vo/backend/odometry.h"
+#include "semantic_edge_vo/backend/trajectory_record.h"
 #include "semantic_edge_vo/support/progress_bar.h"
 #include "semantic_edge_vo/common/robust_statistics.h"
 #include "semantic_edge_vo/sequences/sequence_input.h"
-#include "semantic_edge_vo/eval/trajectory_io.h"
+#include "semantic_edge_vo/common/trajectory_io.h"
 
 using namespace semantic_edge_vo;
 
@@ -93,7 +94,7 @@ counted in the figures). --config reads a file laid out like config/semantic_edg
 (the nodelets' parameters; a key no option reads is an error); the flags override it; without it
 every option has its default, which the shipped config equals. Writes OUT/poses_kitti.txt
 (one line per input frame, camera-to-world of camera 0, frame 0 at identity), OUT/poses_tum.txt,
-OUT/timing.txt (per frame and stage, ms), OUT/parameters.txt (every option used) and prints a summary.
+OUT/poses_flags.txt (per pose line: trusted 0 marks a prediction, not an estimate), OUT/timing.txt (per frame and stage, ms), OUT/parameters.txt (every option used) and prints a summary.
 On a synthetic sequence with true depths (DIR/depth/) it also checks every keyframe's point depths
 against them (not with --parallel): OUT/keyframe_depths.txt and a summary line.
 --class-map-latency N replays a live segmenter N frames slower than the camera (fused and
@@ -224,12 +225,11 @@ struct RunCounts {
 
 /// Writes the poses, timing.txt and parameters.txt into `output`; returns the first write error.
 std::string writeOutputs(const std::string& output, const RunRecord& record, const std::string& parameters, RunCounts* counts) {
-  Trajectory trajectory;
+  TrajectoryRecord trajectory;
   std::ostringstream timing;
   timing << "# frame segmenter_ms intake_ms tracking_ms mapping_ms total_ms window_ms iterations trusted state keyframe guess inlier_ratio motion_deviation keyframe_scale class_map_age scale scale_confidence\n";
   for (const FramePose& pose : record.poses) {
-    trajectory.poses.push_back(pose.T_world_cam);
-    trajectory.stamps.push_back(pose.time);
+    trajectory.add(pose, pose.time);
     const std::size_t i = static_cast<std::size_t>(pose.index);
     const double total = record.intake_ms[i] + pose.tracking_ms + pose.mapping_ms;
     counts->totals.push_back(total);
@@ -243,8 +243,7 @@ std::string writeOutputs(const std::string& output, const RunRecord& record, con
     counts->untrusted += pose.state == OdometryState::kUntrusted;
   }
   for (const std::string& written :
-       {writeKittiPoses(output + "/poses_kitti.txt", trajectory), writeTumTrajectory(output + "/poses_tum.txt", trajectory),
-        writeTextFile(output + "/timing.txt", timing.str()), writeTextFile(output + "/parameters.txt", parameters)})
+       {trajectory.write(output), writeTextFile(output + "/timing.txt", timing.str()), writeTextFile(output + "/parameters.txt", parameters)})
     if (!written.empty()) return written;
   return "";
 }
@@ -327,7 +326,7 @@ int main(int argc, char** argv) {
   }
   printSummary(frames, record, counts, mapping);
   if (depth_report) std::printf("run_sequence: keyframe depths against the sequence's true depths: %s\n", depth_report->summary().c_str());
-  std::printf("run_sequence: wrote %s/poses_kitti.txt, poses_tum.txt, timing.txt, parameters.txt%s\n", args.output.c_str(),
+  std::printf("run_sequence: wrote %s/poses_kitti.txt, poses_tum.txt, poses_flags.txt, timing.txt, parameters.txt%s\n", args.output.c_str(),
               depth_report ? ", keyframe_depths.txt" : "");
   return 0;
 }

@@ -13,7 +13,7 @@
 #include "semantic_edge_vo/support/json_text.h"
 #include "semantic_edge_vo/eval/trajectory_association.h"
 #include "semantic_edge_vo/eval/trajectory_evaluator.h"
-#include "semantic_edge_vo/eval/trajectory_io.h"
+#include "semantic_edge_vo/common/trajectory_io.h"
 #include "semantic_edge_vo/eval/trajectory_plot.h"
 
 namespace semantic_edge_vo {

@@ -10,7 +10,8 @@
 
 #include <gtest/gtest.h>
 
-#include "semantic_edge_vo/eval/trajectory_io.h"
+#include "semantic_edge_vo/backend/trajectory_record.h"
+#include "semantic_edge_vo/common/trajectory_io.h"
 
 namespace semantic_edge_vo {
 namespace {
@@ -120,6 +121,34 @@ TEST_F(TrajectoryIo, TimesWriteReadRoundTrip) {
   ASSERT_EQ(readTimes(path, &read), "");
   ASSERT_EQ(read.size(), stamps.size());
   for (std::size_t i = 0; i < read.size(); ++i) EXPECT_NEAR(read[i], stamps[i], 1e-6);
+}
+
+TEST_F(TrajectoryIo, ARecordWritesItsPosesAndFlagsEveryPoseNotTrusted) {
+  TrajectoryRecord record;
+  const Trajectory poses = randomTrajectory(3, true, 5);
+  for (int i = 0; i < 3; ++i) {
+    FramePose pose;
+    pose.index = i;
+    pose.T_world_cam = poses.poses[static_cast<std::size_t>(i)];
+    pose.trusted = i != 1;
+    pose.state = i == 1 ? OdometryState::kLost : OdometryState::kTracking;
+    record.add(pose, poses.stamps[static_cast<std::size_t>(i)]);
+  }
+  std::vector<std::string> files;
+  ASSERT_EQ(record.write(dir_.string(), &files), "");
+  ASSERT_EQ(files.size(), 3u);
+  Trajectory kitti, tum;
+  ASSERT_EQ(readKittiPoses((dir_ / "poses_kitti.txt").string(), &kitti), "");
+  ASSERT_EQ(readTumTrajectory((dir_ / "poses_tum.txt").string(), &tum), "");
+  EXPECT_EQ(kitti.size(), 3u);
+  EXPECT_EQ(tum.size(), 3u);
+  std::ifstream flags(dir_ / "poses_flags.txt");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(flags, line);)
+    if (!line.empty() && line[0] != '#') lines.push_back(line);
+  ASSERT_EQ(lines.size(), 3u) << "one flag line per pose";
+  EXPECT_EQ(lines[1].substr(lines[1].size() - 7), " 0 lost") << lines[1];
+  EXPECT_EQ(lines[2].substr(lines[2].size() - 11), " 1 tracking") << lines[2];
 }
 
 TEST_F(TrajectoryIo, ReadsKeyframesFromATimingTableOrAList) {

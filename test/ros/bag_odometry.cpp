@@ -38,7 +38,7 @@
 #include "semantic_edge_vo/TrackingStatus.h"
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
 #include "semantic_edge_vo/eval/trajectory_evaluation.h"
-#include "semantic_edge_vo/eval/trajectory_io.h"
+#include "semantic_edge_vo/common/trajectory_io.h"
 
 namespace semantic_edge_vo {
 namespace {

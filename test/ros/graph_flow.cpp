@@ -1,5 +1,6 @@
 // rostest: messages flow through every stage at the input rate, zero-copy, with correct frames and
-// stamps, and every nodelet reports its health on /diagnostics.
+// stamps; the running graph saves its trajectory and map; every nodelet reports on /diagnostics.
+#include <fstream>
 #include <map>
 #include <mutex>
 #include <set>
@@ -17,6 +18,7 @@
 
 #include "semantic_edge_vo/KeyframeMap.h"
 #include "semantic_edge_vo/MessageTrace.h"
+#include "semantic_edge_vo/SaveFiles.h"
 #include "semantic_edge_vo/NearestNeighborField.h"
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
 #include "semantic_edge_vo/TrackedFrame.h"
@@ -196,7 +198,33 @@ TEST(GraphFlow, EveryStageAtInputRateZeroCopyWithStampedTf) {
   EXPECT_EQ(fields, (std::vector<std::string>{"x", "y", "z", "label", "rgb"}));
   EXPECT_GT(cloud->width * cloud->height, 0u);
 
-  // 4. Every nodelet reports its health on /diagnostics: inputs at the camera's rate, none lost.
+  // 4. The running graph saves its trajectory (every frame, flagged) and its map.
+  const std::string saved = ::testing::TempDir() + "/graph_flow_saved";
+  SaveFiles save;
+  save.request.directory = saved;
+  ASSERT_TRUE(ros::service::call("/tracking/save_trajectory", save));
+  EXPECT_TRUE(save.response.success) << save.response.message;
+  EXPECT_EQ(save.response.files.size(), 3u);
+  const auto data_lines = [](const std::string& path) {
+    std::ifstream in(path);
+    int count = 0;
+    for (std::string line; std::getline(in, line);) count += !line.empty() && line[0] != '#';
+    return count;
+  };
+  const int poses = data_lines(saved + "/poses_kitti.txt");
+  EXPECT_GT(poses, 40);
+  EXPECT_EQ(data_lines(saved + "/poses_flags.txt"), poses);
+  EXPECT_EQ(data_lines(saved + "/poses_tum.txt"), poses);
+  SaveFiles save_map;
+  save_map.request.directory = saved;
+  ASSERT_TRUE(ros::service::call("/mapping/save_map", save_map));
+  EXPECT_TRUE(save_map.response.success) << save_map.response.message;
+  std::ifstream ply(saved + "/semantic_edge_map.ply");
+  std::string line;
+  while (std::getline(ply, line) && line.rfind("element vertex", 0) != 0) {}
+  EXPECT_GT(std::stoi(line.substr(std::string("element vertex ").size())), 0) << "the saved map has no point";
+
+  // 5. Every nodelet reports its health on /diagnostics: inputs at the camera's rate, none lost.
   std::lock_guard<std::mutex> lock(status_mutex);
   for (const std::string name : {"/edge_intake", "/nearest_neighbor_field", "/tracking", "/mapping"}) {
     ASSERT_TRUE(diagnostics.count(name)) << "no diagnostics from " << name;

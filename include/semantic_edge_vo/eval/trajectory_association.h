@@ -4,7 +4,7 @@
 
 #include <Eigen/Geometry>
 
-#include "semantic_edge_vo/eval/trajectory_io.h"
+#include "semantic_edge_vo/common/trajectory_io.h"
 
 namespace semantic_edge_vo {
 

@@ -8,7 +8,7 @@
 #include <Eigen/LU>
 #include <opencv2/imgcodecs.hpp>
 
-#include "semantic_edge_vo/eval/trajectory_io.h"
+#include "semantic_edge_vo/common/trajectory_io.h"
 
 namespace semantic_edge_vo {
 namespace fs = std::filesystem;

@@ -5,7 +5,7 @@
 
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/sequences/semantic_map_files.h"
-#include "semantic_edge_vo/eval/trajectory_io.h"
+#include "semantic_edge_vo/common/trajectory_io.h"
 
 namespace semantic_edge_vo {
 namespace fs = std::filesystem;

@@ -16,7 +16,7 @@
 
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/bags/kitti_bag_conversion.h"
-#include "semantic_edge_vo/eval/trajectory_io.h"
+#include "semantic_edge_vo/common/trajectory_io.h"
 
 namespace semantic_edge_vo {
 namespace {

@@ -65,4 +65,14 @@ std::string writeTextFile(const std::string& path, const std::string& text);
 /// KITTI times.txt, fixed point with 9 decimals (ns), so that ROS epoch stamps keep their precision.
 std::string writeTimes(const std::string& path, const std::vector<double>& stamps);
 
+/// How far one pose of a trajectory file can be trusted.
+struct PoseFlag {
+  double stamp = 0.0;
+  bool trusted = false;  ///< false: a prediction (lost, untrusted, waiting for the initialisation)
+  std::string state;     ///< the odometry's state at the frame (one word)
+};
+/// The side file of a trajectory (poses_flags.txt): one line per pose of its KITTI and TUM files,
+/// in the same order, `index stamp trusted state`, under a '#' header saying so.
+std::string writePoseFlags(const std::string& path, const std::vector<PoseFlag>& flags);
+
 }  // namespace semantic_edge_vo

@@ -1,4 +1,4 @@
-#include "semantic_edge_vo/eval/trajectory_io.h"
+#include "semantic_edge_vo/common/trajectory_io.h"
 
 #include <cerrno>
 #include <cmath>
@@ -248,6 +248,18 @@ std::string writeTimes(const std::string& path, const std::vector<double>& stamp
     std::snprintf(number, sizeof(number), "%.9f", stamps[i]);
     return std::string(number);
   });
+}
+
+std::string writePoseFlags(const std::string& path, const std::vector<PoseFlag>& flags) {
+  std::ostringstream text;
+  text << "# one line per pose of the trajectory's KITTI and TUM files, in their order: index stamp trusted state\n"
+          "# trusted 0: not estimated with confidence (a prediction: lost, untrusted, or waiting for the initialisation)\n";
+  char stamp[48];
+  for (std::size_t i = 0; i < flags.size(); ++i) {
+    std::snprintf(stamp, sizeof(stamp), "%.9f", flags[i].stamp);
+    text << i << ' ' << stamp << ' ' << (flags[i].trusted ? 1 : 0) << ' ' << flags[i].state << '\n';
+  }
+  return writeTextFile(path, text.str());
 }
 
 }  // namespace semantic_edge_vo
