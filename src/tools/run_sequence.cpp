@@ -21,6 +21,7 @@
 #include "semantic_edge_vo/common/robust_statistics.h"
 #include "semantic_edge_vo/sequences/sequence_input.h"
 #include "semantic_edge_vo/common/trajectory_io.h"
+#include "semantic_edge_vo/ros/bags/bag_sequence.h"
 
 using namespace semantic_edge_vo;
 
@@ -28,6 +29,7 @@ namespace {
 
 struct Arguments {
   std::string sequence, output, field, intake, segmenter_model, config;  ///< field, intake: empty = config's
+  std::string bag, topic;  ///< a recording instead of a folder
   std::string frames_text, latency_text, rate_text, camera_height_text;
   int frames = 0;  ///< 0: all
   int class_map_latency = 0;  ///< 0: every frame has its own class map
@@ -35,6 +37,7 @@ struct Arguments {
   double camera_height = 0.0; ///< m above the road (metric scale); 0: the config's
   bool quiet = false;
   bool parallel = false;  ///< mapping on its own thread (the live default) instead of after each frame
+  bool rectify = false;   ///< --bag: undistort with camera_info first
 };
 
 std::string parse(int argc, char** argv, Arguments* args) {
@@ -43,8 +46,8 @@ std::string parse(int argc, char** argv, Arguments* args) {
                                         {"--intake", &args->intake}, {"--segmenter-model", &args->segmenter_model},
                                         {"--config", &args->config}, {"--frames", &args->frames_text},
                                         {"--class-map-latency", &args->latency_text}, {"--rate", &args->rate_text},
-                                        {"--camera-height", &args->camera_height_text}},
-                                       {{"--quiet", &args->quiet}, {"--parallel", &args->parallel}});
+                                        {"--camera-height", &args->camera_height_text}, {"--bag", &args->bag}, {"--topic", &args->topic}},
+                                       {{"--quiet", &args->quiet}, {"--parallel", &args->parallel}, {"--rectify", &args->rectify}});
   if (!error.empty()) return error;
   if (const std::string bad = parseNumber("--frames", args->frames_text, &args->frames); !bad.empty()) return bad;
   if (args->frames < 0) return "--frames takes a count >= 0 (0: all)";
@@ -54,8 +57,31 @@ std::string parse(int argc, char** argv, Arguments* args) {
   if (args->rate < 0.0) return "--rate takes frames a second >= 0 (0: as fast as it can)";
   if (const std::string bad = parseNumber("--camera-height", args->camera_height_text, &args->camera_height); !bad.empty()) return bad;
   if (!args->camera_height_text.empty() && !(args->camera_height > 0.0)) return "--camera-height takes metres > 0";
-  if (args->sequence.empty() || args->output.empty()) return "--sequence DIR and --output OUT are required";
+  if (args->output.empty()) return "--output OUT is required";
+  if (args->sequence.empty() == args->bag.empty()) return "give --sequence DIR or --bag FILE --topic TOPIC (one of them)";
+  if (!args->bag.empty() && args->topic.empty()) return "--bag needs --topic (the image topic)";
+  if (args->rectify && args->bag.empty()) return "--rectify applies to --bag only (a KITTI folder is rectified)";
   return {};
+}
+
+/// --bag: the recording's images as a KITTI folder in OUT/bag_sequence, which becomes the sequence.
+std::string sequenceFromBag(Arguments* args) {
+  BagSequenceOptions bag;
+  bag.bag = args->bag;
+  bag.topic = args->topic;
+  bag.output = args->output + "/bag_sequence";
+  bag.rectify = args->rectify;
+  std::optional<ProgressBar> progress;  // its total comes with the first image
+  std::size_t frames = 0, skipped = 0;
+  const std::string error = writeSequenceFromBag(bag, [&](std::size_t done, std::size_t total) {
+    if (!progress) progress.emplace(static_cast<int>(total), !args->quiet, "images");
+    progress->update(static_cast<int>(done));
+  }, &frames, &skipped);
+  if (!error.empty()) return error;
+  std::printf("run_sequence: %zu images from %s on %s%s\n", frames, args->bag.c_str(), args->topic.c_str(),
+              skipped ? (", " + std::to_string(skipped) + " skipped (stamp not after the previous)").c_str() : "");
+  args->sequence = bag.output;
+  return "";
 }
 
 /// A depth file the keyframe depth check cannot use ends the check, not the run.
@@ -82,11 +108,12 @@ std::string applyFlags(const Arguments& args, GraphConfig* options) {
   return error.empty() ? options->odometry.validate() : error;
 }
 
-const char* const kUsage = R"(usage: run_sequence --sequence DIR --output OUT [--field snnf|onnf|annf|none]
+const char* const kUsage = R"(usage: run_sequence (--sequence DIR | --bag FILE --topic TOPIC [--rectify]) --output OUT [--field snnf|onnf|annf|none]
            [--intake canny|fused|semantic_edges] [--segmenter-model PATH] [--config FILE] [--frames N]
            [--class-map-latency N] [--parallel] [--rate HZ] [--camera-height METRES] [--quiet]
-Runs the odometry offline on a KITTI odometry folder (image_0/, calib.txt, times.txt) or a synthetic
-sequence, frames as fast as it can, deterministically: mapping runs after each frame (the
+Runs the odometry offline on a KITTI odometry folder (image_0/, calib.txt, times.txt), a synthetic
+sequence, or the images of TOPIC in a bag (sensor_msgs/Image or CompressedImage, rectified unless
+--rectify, with camera_info beside the topic; written to OUT/bag_sequence/ for the run and removed), frames as fast as it can, deterministically: mapping runs after each frame (the
 config's tracking/mapping_mode is the live graph's). --parallel runs mapping on its own thread, as
 the live graph does by default: tracking never waits for it, and the trajectory depends on timing.
 --rate HZ feeds the frames no faster than HZ a second, as a camera would (the time waiting is not
@@ -289,6 +316,13 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "run_sequence: %s\n%s", error.c_str(), kUsage);
     return 2;
   }
+  if (!args.bag.empty()) {
+    error = sequenceFromBag(&args);
+    if (!error.empty()) {
+      std::fprintf(stderr, "run_sequence: %s\n", error.c_str());
+      return 1;
+    }
+  }
   const FrameBuilderOptions& frame_options = options.frame;
   SequenceInput input;
   error = input.open(args.sequence, frame_options.intake.mode, options.segmenter, options.classes.size());
@@ -325,6 +359,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   printSummary(frames, record, counts, mapping);
+  if (!args.bag.empty()) std::filesystem::remove_all(args.sequence);
   if (depth_report) std::printf("run_sequence: keyframe depths against the sequence's true depths: %s\n", depth_report->summary().c_str());
   std::printf("run_sequence: wrote %s/poses_kitti.txt, poses_tum.txt, poses_flags.txt, timing.txt, parameters.txt%s\n", args.output.c_str(),
               depth_report ? ", keyframe_depths.txt" : "");

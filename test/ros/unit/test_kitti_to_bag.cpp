@@ -1,5 +1,6 @@
-// kitti_to_bag's conversion: the shared KITTI 06 frames become a complete bag; a small colour
-// sequence with semantics; malformed or missing inputs are refused by name.
+// kitti_to_bag's conversion: the shared KITTI 06 frames become a complete bag, which reads back as
+// the same folder (run_sequence --bag); a small colour sequence with semantics; malformed or
+// missing inputs are refused by name.
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include <sensor_msgs/Image.h>
 
 #include "semantic_edge_vo/ros/conversions.h"
+#include "semantic_edge_vo/ros/bags/bag_sequence.h"
 #include "semantic_edge_vo/ros/bags/kitti_bag_conversion.h"
 #include "semantic_edge_vo/common/trajectory_io.h"
 
@@ -127,6 +129,42 @@ TEST(KittiToBag, SharedKitti06BecomesACompleteBag) {
     }
   }
   EXPECT_DOUBLE_EQ(info.K[0], 707.0912);
+}
+
+TEST(KittiToBag, ABagReadBackIsTheKittiFolderItCameFrom) {
+  const fs::path sequence = kKitti / "sequences" / "06";
+  if (!fs::exists(sequence / "calib.txt")) GTEST_SKIP() << "shared KITTI 06 absent (" << sequence << "): ../shared is not beside the repository";
+  TemporaryFolder folder;
+  KittiBagOptions options;
+  options.sequence = sequence.string();
+  options.output = (folder.path() / "06.bag").string();
+  ASSERT_EQ(writeKittiBag(options, nullptr), "");
+  BagSequenceOptions read;
+  read.bag = options.output;
+  read.topic = "/camera/image_rect";
+  read.output = (folder.path() / "back").string();
+  std::size_t frames = 0, skipped = 0;
+  ASSERT_EQ(writeSequenceFromBag(read, nullptr, &frames, &skipped), "");
+  EXPECT_EQ(frames, 51u);
+  EXPECT_EQ(skipped, 0u);
+  Eigen::Matrix<double, 3, 4> original, back;
+  ASSERT_EQ(readKittiProjection((sequence / "calib.txt").string(), 0, &original), "");
+  ASSERT_EQ(readKittiProjection(read.output + "/calib.txt", 0, &back), "");
+  EXPECT_TRUE(back.leftCols<3>().isApprox(original.leftCols<3>(), 1e-9)) << back;
+  std::vector<double> times, times_back;
+  ASSERT_EQ(readTimes((sequence / "times.txt").string(), &times), "");
+  ASSERT_EQ(readTimes(read.output + "/times.txt", &times_back), "");
+  ASSERT_EQ(times_back.size(), times.size());
+  EXPECT_NEAR(times_back[50] - times_back[0], times[50] - times[0], 1e-6);
+  for (std::size_t frame : {0u, 50u}) {
+    const cv::Mat a = cv::imread(kittiFramePath((sequence / "image_0").string(), frame), cv::IMREAD_UNCHANGED);
+    const cv::Mat b = cv::imread(kittiFramePath(read.output + "/image_0", frame), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0) << "frame " << frame << "'s pixels";
+  }
+  read.topic = "/no/such/image";
+  EXPECT_NE(writeSequenceFromBag(read, nullptr, &frames, &skipped).find("no valid sensor_msgs/CameraInfo on /no/such/camera_info"),
+            std::string::npos);
 }
 
 TEST(KittiToBag, ColourCameraWithSemantics) {
