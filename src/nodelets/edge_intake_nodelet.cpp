@@ -13,6 +13,7 @@
 #include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/image_encodings.h>
 
+#include "semantic_edge_vo/EdgeIntakeConfig.h"
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
 #include "semantic_edge_vo/common/class_table.h"
 #include "semantic_edge_vo/frontend/point_sampler.h"
@@ -23,6 +24,7 @@
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/frame_pairing.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
+#include "semantic_edge_vo/ros/live_parameters.h"
 #include "semantic_edge_vo/config/intake_options_loading.h"
 #include "semantic_edge_vo/config/live_options.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
@@ -49,9 +51,8 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     if (error.empty()) error = loadSemanticEdgeOptions(&loader, &options_);
     if (error.empty()) error = loadClassTable(&loader, &classes_);
     if (options_.mode == IntakeMode::kCanny) classes_ = ClassTable::singleEdgeClass();
-    PointSamplerOptions sampler_options;
-    if (error.empty()) error = loadPointSamplerOptions(&loader, &sampler_options);
-    sampler_ = PointSampler(sampler_options);
+    if (error.empty()) error = loadPointSamplerOptions(&loader, &sampler_options_);
+    sampler_ = PointSampler(sampler_options_);
     tracer_.init(node, &loader, getName());
     NODELET_INFO_STREAM("parameters:" << loader.summary() << "\n  classes = " << classes_.size());
     warnUnknownParameters(loader, getName());
@@ -68,6 +69,15 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     carrier_ = ClassMapCarrier(stream.class_carry);
     stamp_order_ = StampOrder(time_jump_back_);
     const bool need_edges = options_.mode == IntakeMode::kFused && stream.edge_source == "topic";
+    EdgeIntakeConfig live;
+    live.max_edge_points = sampler_options_.max_edge_points;
+    live.min_support_points = sampler_options_.min_support_points;
+    live_ = std::make_unique<LiveParameters<EdgeIntakeConfig>>(private_node, live, [this](const EdgeIntakeConfig& config) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      sampler_options_.max_edge_points = config.max_edge_points;
+      sampler_options_.min_support_points = config.min_support_points;
+      sampler_ = PointSampler(sampler_options_);
+    });
     info_pairing_ = std::make_unique<CameraInfoPairing>(stream.camera_info_tolerance, stream.camera_info_wait,
                                                         static_cast<std::size_t>(stream.queue_size));
     image_timeout_ = stream.image_timeout;
@@ -426,7 +436,9 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
   }
 
   SemanticEdgeOptions options_;
+  PointSamplerOptions sampler_options_;          ///< the config's, then live (guarded by mutex_)
   PointSampler sampler_{PointSamplerOptions()};  ///< set up in onInit
+  std::unique_ptr<LiveParameters<EdgeIntakeConfig>> live_;
   ClassTable classes_;
   ClassEvidenceForm class_form_ = ClassEvidenceForm::kProbabilities;
   bool fallback_to_canny_ = true;

@@ -2,11 +2,15 @@
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
 
+#include <mutex>
+
 #include "semantic_edge_vo/NearestNeighborField.h"
+#include "semantic_edge_vo/NearestNeighborFieldConfig.h"
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
 #include "semantic_edge_vo/fields/nearest_neighbor_field.h"
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
+#include "semantic_edge_vo/ros/live_parameters.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
 #include "semantic_edge_vo/ros/nodelet_diagnostics.h"
 #include "semantic_edge_vo/config/options_loading.h"
@@ -31,6 +35,21 @@ class NearestNeighborFieldNodelet : public nodelet::Nodelet {
     }
     diagnostics_ = std::make_unique<NodeletDiagnostics>(node, getName());
     rejections_ = std::make_unique<InputRejections>(getName(), [this](const std::string&) { diagnostics_->dropped(); });
+    NearestNeighborFieldConfig live;
+    live.kind = toString(options_.kind);
+    live.truncation_radius = options_.truncation_radius;
+    live_ = std::make_unique<LiveParameters<NearestNeighborFieldConfig>>(
+        getPrivateNodeHandle(), live, [this](const NearestNeighborFieldConfig& config) {
+          std::lock_guard<std::mutex> lock(options_mutex_);
+          FieldOptions changed = options_;
+          changed.truncation_radius = config.truncation_radius;
+          if (!parseFieldKind(config.kind, &changed.kind) || !changed.validate().empty()) {
+            NODELET_ERROR_STREAM("live parameters refused: field kind '" << config.kind << "', truncation radius " << config.truncation_radius);
+            return;
+          }
+          if (changed.kind != options_.kind) NODELET_INFO_STREAM("field kind now " << config.kind << ": tracking starts a new map");
+          options_ = changed;
+        });
     field_publisher_ = node.advertise<NearestNeighborField>("nn_field", 5);
     frame_subscriber_ = node.subscribe("edge_frame", 5, &NearestNeighborFieldNodelet::onFrame, this);
   }
@@ -54,16 +73,23 @@ class NearestNeighborFieldNodelet : public nodelet::Nodelet {
                           std::to_string(frame->class_names.size()) + " classes, a class mask holds 32");
       return;
     }
+    FieldOptions options;
+    {
+      std::lock_guard<std::mutex> lock(options_mutex_);
+      options = options_;
+    }
     auto field = boost::make_shared<NearestNeighborField>();
     field->header = frame->header;
     moveFieldInto(buildNearestNeighborField(edges, static_cast<int>(frame->image.width),
-                                            static_cast<int>(frame->image.height), frame->class_names, options_),
+                                            static_cast<int>(frame->image.height), frame->class_names, options),
                   field.get());
     field_publisher_.publish(NearestNeighborFieldConstPtr(field));
     tracer_.published(field_publisher_, field.get(), field->header.stamp);
   }
 
+  std::mutex options_mutex_;  // guards options_ (live parameters change them)
   FieldOptions options_;
+  std::unique_ptr<LiveParameters<NearestNeighborFieldConfig>> live_;
   std::unique_ptr<NodeletDiagnostics> diagnostics_;
   std::unique_ptr<InputRejections> rejections_;
   MessageTracer tracer_;

@@ -4,7 +4,9 @@
 // nav_msgs/Odometry for every trusted pose, TrackingStatus for every frame, TrackedFrame for the path.
 #include <atomic>
 #include <mutex>
+#include <optional>
 #include <set>
+#include <utility>
 
 #include <message_filters/subscriber.h>
 #include <message_filters/time_synchronizer.h>
@@ -21,12 +23,14 @@
 #include "semantic_edge_vo/NearestNeighborField.h"
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
 #include "semantic_edge_vo/TrackedFrame.h"
+#include "semantic_edge_vo/TrackingConfig.h"
 #include "semantic_edge_vo/TrackingStatus.h"
 #include "semantic_edge_vo/backend/odometry.h"
 #include "semantic_edge_vo/backend/trajectory_record.h"
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
 #include "semantic_edge_vo/ros/conversions.h"
 #include "semantic_edge_vo/ros/input_rejections.h"
+#include "semantic_edge_vo/ros/live_parameters.h"
 #include "semantic_edge_vo/ros/map_files.h"
 #include "semantic_edge_vo/config/live_options.h"
 #include "semantic_edge_vo/ros/message_tracer.h"
@@ -38,6 +42,16 @@
 #include "semantic_edge_vo/ros/stamp_order.h"
 
 namespace semantic_edge_vo {
+
+/// LiveTuning and the generated TrackingConfig (cfg/Tracking.cfg) name their fields alike.
+template <typename From, typename To>
+void copyTuning(const From& from, To* to) {
+  to->photometric_huber = from.photometric_huber;
+  to->edge_huber = from.edge_huber;
+  to->keyframe_flow = from.keyframe_flow;
+  to->keyframe_max_interval = from.keyframe_max_interval;
+  to->keyframe_min_parallax = from.keyframe_min_parallax;
+}
 
 class TrackingNodelet : public nodelet::Nodelet {
  private:
@@ -82,6 +96,14 @@ class TrackingNodelet : public nodelet::Nodelet {
     sync_->registerCallback(&TrackingNodelet::onFrame, this);
     reset_service_ = getPrivateNodeHandle().advertiseService("reset", &TrackingNodelet::onReset, this);
     save_service_ = getPrivateNodeHandle().advertiseService("save_trajectory", &TrackingNodelet::onSaveTrajectory, this);
+    TrackingConfig live;
+    copyTuning(LiveTuning::of(options_), &live);
+    live_ = std::make_unique<LiveParameters<TrackingConfig>>(getPrivateNodeHandle(), live, [this](const TrackingConfig& config) {
+      LiveTuning changed;
+      copyTuning(config, &changed);
+      std::lock_guard<std::mutex> lock(tuning_mutex_);
+      pending_tuning_ = changed;  // taken by the frame callback, which owns the odometry
+    });
   }
 
   bool onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
@@ -171,6 +193,13 @@ class TrackingNodelet : public nodelet::Nodelet {
       odometry_messages_->restart();
     }
     if (restart_requested_.exchange(false)) odometry_->restart();
+    applyLiveTuning();
+    if (fields.kind != field_kind_) {
+      // The keyframes' points hold the old kind's layers: a new map, on the new kind's fields.
+      if (frame_count_ > 0) NODELET_INFO_STREAM("the field kind changed to " << toString(fields.kind) << ": a new map");
+      if (frame_count_ > 0) odometry_->restart();
+      field_kind_ = fields.kind;
+    }
     stamps_[frame_count_] = {frame->header, frame->class_map_age};
     class_names_ = frame->class_names;
     const auto odometry_frame =
@@ -272,6 +301,24 @@ class TrackingNodelet : public nodelet::Nodelet {
     }
   }
 
+  /// Live parameters changed since the last frame: the odometry (and the next ones) take them.
+  void applyLiveTuning() {
+    std::optional<LiveTuning> tuning;
+    {
+      std::lock_guard<std::mutex> lock(tuning_mutex_);
+      tuning = std::exchange(pending_tuning_, std::nullopt);
+    }
+    if (!tuning) return;
+    OdometryOptions tuned = options_;
+    tuning->applyTo(&tuned);
+    if (const std::string error = tuned.validate(); !error.empty()) {
+      NODELET_ERROR_STREAM("live parameters refused: " << error);
+      return;
+    }
+    options_ = tuned;
+    odometry_->tune(*tuning);
+  }
+
   /// The camera frame of a frame: the configured one, else the image's.
   std::string cameraFrameOf(const std_msgs::Header& header) const {
     return tf_.camera_frame.empty() ? header.frame_id : tf_.camera_frame;
@@ -325,7 +372,7 @@ class TrackingNodelet : public nodelet::Nodelet {
     NODELET_INFO_STREAM("publishing the assumed " << tf_.frames.base_frame << " -> " << mounting_frame_ << " as a static transform");
   }
 
-  // Parameters (read in onInit, constant afterwards).
+  // Parameters (read in onInit, constant afterwards; options_'s live tuning changes in the frame callback).
   TfOptions tf_;
   bool use_edges_ = true;  ///< false: photometric-only odometry (the ablation's "none")
   OdometryOptions options_;
@@ -346,6 +393,9 @@ class TrackingNodelet : public nodelet::Nodelet {
   std::string announced_camera_frame_;
   std::set<std::string> warned_assumptions_;
   ros::ServiceServer reset_service_, save_service_;
+  std::unique_ptr<LiveParameters<TrackingConfig>> live_;
+  std::mutex tuning_mutex_;  // guards pending_tuning_ (set by the live parameters, taken by the frame callback)
+  std::optional<LiveTuning> pending_tuning_;
   std::mutex record_mutex_;  // guards record_ (the frame callback adds, the save service reads)
   TrajectoryRecord record_;
   std::atomic<bool> restart_requested_{false};  ///< set by the reset service, taken by the frame callback
@@ -356,6 +406,7 @@ class TrackingNodelet : public nodelet::Nodelet {
   std::string mounting_frame_;  ///< its camera frame
   bool waited_for_extrinsic_ = false;
   std::unique_ptr<Odometry> odometry_;
+  FieldKind field_kind_ = FieldKind::kAnnf;  ///< of the last frame's field
   StampOrder stamp_order_{0.0};  ///< the intake passes frames in order: any step back is a new pass
   struct RecentFrame {
     std_msgs::Header header;

@@ -9,8 +9,11 @@ std::vector<std::string> RosParameterSource::names() const {
   std::vector<std::string> all, names;
   if (!node_.getParamNames(all)) return names;
   const std::string prefix = node_.getNamespace() + "/";
-  for (const std::string& name : all)
-    if (name.compare(0, prefix.size(), prefix) == 0) names.push_back(name.substr(prefix.size()));
+  for (const std::string& name : all) {
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string own = name.substr(prefix.size());
+    if (own.compare(0, 5, "live/") != 0) names.push_back(own);  // dynamic_reconfigure's (LiveParameters)
+  }
   return names;
 }
 

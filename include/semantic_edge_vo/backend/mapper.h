@@ -3,6 +3,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,8 @@ struct MappingRequest {
   /// A frame that waited for the initialisation: it refines the first keyframe's depths and follows
   /// its corners; class reliability and keyframe decisions start after these frames.
   bool waited_for_initialization = false;
+  /// New live parameters (Odometry::tune), taken before this request is mapped.
+  std::optional<LiveTuning> tuning;
 };
 
 /// The keyframes of the window as they were when a keyframe was made: copies, never changed again.

@@ -2,6 +2,7 @@
 #include <chrono>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,9 @@ class Odometry {
   /// begins where the odometry predicts that frame, at the old map's scale: odom stays continuous),
   /// but without trying the old map first. While initialising it only stops those tries.
   void restart();
+  /// New values of the live parameters: the tracker uses them from the next frame, mapping from the
+  /// next request it gets.
+  void tune(const LiveTuning& tuning);
   /// Poses of frames still waiting for initialisation, as untrusted constant-velocity predictions (end of a sequence).
   std::vector<FramePose> flush();
   /// Waits for mapping to finish what it was handed (parallel mode; at once otherwise), so that
@@ -145,6 +149,7 @@ class Odometry {
   OdometryOptions options_;
   PinholeCamera camera_;
   Tracker tracker_;
+  std::optional<LiveTuning> pending_tuning_;  ///< for mapping's next request
   std::shared_ptr<const Keyframe> keyframe_;  ///< tracked against: mapping's copy of its active keyframe
   TwoViewInitializer initializer_;
   std::shared_ptr<MappingLink> mapping_;

@@ -55,4 +55,15 @@ struct OdometryOptions {
   std::string validate() const;
 };
 
+/// What users may change while an odometry runs (the Tracking nodelet's live parameters): the
+/// tracker's robust widths and the keyframe thresholds. The rest is fixed for an odometry's life.
+struct LiveTuning {
+  double photometric_huber = 0.0, edge_huber = 0.0;
+  double keyframe_flow = 0.0, keyframe_min_parallax = 0.0;
+  int keyframe_max_interval = 0;
+
+  static LiveTuning of(const OdometryOptions& options);
+  void applyTo(OdometryOptions* options) const;
+};
+
 }  // namespace semantic_edge_vo

@@ -67,6 +67,8 @@ class Tracker {
 
   /// Precomputes what tracking against `keyframe` needs (reference patterns, edge points).
   void setKeyframe(std::shared_ptr<const Keyframe> keyframe);
+  /// New options (live tuning); the keyframe's precomputation is made again with them.
+  void setOptions(const TrackerOptions& options);
   const std::shared_ptr<const Keyframe>& keyframe() const { return keyframe_; }
 
   /// @param[in] frame pyramid of the frame

@@ -50,6 +50,7 @@ MappingOutcome Mapper::map(const MappingRequest& request) {
   const auto start = std::chrono::steady_clock::now();
   MappingOutcome outcome;
   outcome.frame_index = request.frame->index;
+  if (request.tuning) request.tuning->applyTo(&options_);
   if (request.new_map) {
     startMap(request);
     outcome.T_world_cam = request.T_world_cam;

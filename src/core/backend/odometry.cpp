@@ -2,6 +2,8 @@
 // initialisation is in odometry_initialization.cpp, mapping in mapper.cpp.
 #include "semantic_edge_vo/backend/odometry.h"
 
+#include <utility>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -67,6 +69,30 @@ bool parseMappingMode(const std::string& text, MappingMode* mode) {
   if (text != "deterministic" && text != "parallel") return false;
   *mode = text == "parallel" ? MappingMode::kParallel : MappingMode::kDeterministic;
   return true;
+}
+
+LiveTuning LiveTuning::of(const OdometryOptions& options) {
+  LiveTuning tuning;
+  tuning.photometric_huber = options.tracker.photometric_huber;
+  tuning.edge_huber = options.tracker.edge_huber;
+  tuning.keyframe_flow = options.keyframe_flow;
+  tuning.keyframe_min_parallax = options.keyframe_min_parallax;
+  tuning.keyframe_max_interval = options.keyframe_max_interval;
+  return tuning;
+}
+
+void LiveTuning::applyTo(OdometryOptions* options) const {
+  options->tracker.photometric_huber = photometric_huber;
+  options->tracker.edge_huber = edge_huber;
+  options->keyframe_flow = keyframe_flow;
+  options->keyframe_min_parallax = keyframe_min_parallax;
+  options->keyframe_max_interval = keyframe_max_interval;
+}
+
+void Odometry::tune(const LiveTuning& tuning) {
+  tuning.applyTo(&options_);
+  tracker_.setOptions(options_.tracker);
+  pending_tuning_ = tuning;  // mapping takes it with the next request, in order
 }
 
 Odometry::Odometry(const OdometryOptions& options, const PinholeCamera& camera, MappingMode mode, std::shared_ptr<MappingLink> mapping)
@@ -157,6 +183,7 @@ void Odometry::finishMapping() {
 
 MappingOutcome Odometry::mapNow(MappingRequest request) {
   const int frame_index = request.frame->index;
+  request.tuning = std::exchange(pending_tuning_, std::nullopt);
   mapping_->post(std::move(request));
   mapping_->waitUntilIdle();
   for (MappingOutcome& outcome : mapping_->takeOutcomes())
@@ -314,6 +341,7 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   request.tracking = pose.tracking;
   if (parallel_) {
     if (pose.tracking.mean_flow > options_.keyframe_flow) keyframe_asked_by_ = frame->index;
+    request.tuning = std::exchange(pending_tuning_, std::nullopt);
     mapping_->post(std::move(request));
     remember(pose);
     return pose;

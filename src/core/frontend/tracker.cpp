@@ -49,6 +49,11 @@ void Tracker::setKeyframe(std::shared_ptr<const Keyframe> keyframe) {
   }
 }
 
+void Tracker::setOptions(const TrackerOptions& options) {
+  options_ = options;
+  if (keyframe_) setKeyframe(keyframe_);
+}
+
 void Tracker::setReferences() {
   const ImagePyramid& pyramid = *keyframe_->frame->pyramid;
   const int levels = std::min(options_.levels, pyramid.levels());
