@@ -1,6 +1,7 @@
 # Sourced by the scripts in this folder: paths and the ROS environment of Debian's ROS 1 (under /usr).
 REPO_DIR=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-WS_DIR=${SEMANTIC_EDGE_VO_WS:-$REPO_DIR/.build_ws}
+# The catkin workspace sits beside the clone, never inside it (rosrun would walk into its symlink).
+WS_DIR=${SEMANTIC_EDGE_VO_WS:-$(dirname "$REPO_DIR")/$(basename "$REPO_DIR")_ws}
 SHARED_DIR=${SEMANTIC_EDGE_VO_SHARED:-$(cd "$REPO_DIR/.." && pwd)/shared}
 # Debian's python3 must come first: a pyenv/venv python3 lacks catkin_pkg and rospy.
 export PATH=/usr/bin:/bin:$PATH
