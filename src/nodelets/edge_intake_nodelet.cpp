@@ -94,7 +94,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     if (stream.transport == "raw")
       image_subscriber_ = image_transport.subscribe("image", queue, &EdgeIntakeNodelet::onRawImage, this);
     else
-      image_subscriber_ros_ = node.subscribe(image_topic_ + "/compressed", queue, &EdgeIntakeNodelet::onCompressedImage, this);
+      compressed_subscriber_ = node.subscribe(image_topic_ + "/compressed", queue, &EdgeIntakeNodelet::onCompressedImage, this);
     pairing_timer_ = node.createWallTimer(ros::WallDuration(std::min(0.05, stream.camera_info_wait / 4)), &EdgeIntakeNodelet::onPairingTimer, this);
     if (options_.mode == IntakeMode::kCanny) return;
     const char* class_topic = options_.mode == IntakeMode::kFused ? "class_probabilities" : "class_edge_probabilities";
@@ -451,7 +451,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
   image_transport::Publisher edge_image_publisher_;
   std::string image_topic_;  ///< resolved
   image_transport::Subscriber image_subscriber_;
-  ros::Subscriber image_subscriber_ros_, info_subscriber_, class_subscriber_, edge_subscriber_;
+  ros::Subscriber compressed_subscriber_, info_subscriber_, class_subscriber_, edge_subscriber_;
   ros::WallTimer expiry_timer_, pairing_timer_;
   double image_timeout_ = 3.0;  // s, IntakeStreamOptions::image_timeout
   std::mutex mutex_;  // guards everything below and serializes all callbacks (frames leave in stamp order)

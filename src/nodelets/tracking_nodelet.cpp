@@ -5,7 +5,6 @@
 #include <atomic>
 #include <mutex>
 #include <optional>
-#include <set>
 #include <utility>
 
 #include <message_filters/subscriber.h>
@@ -14,11 +13,6 @@
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <std_srvs/Trigger.h>
-#include <tf2_eigen/tf2_eigen.h>
-#include <tf2_ros/buffer.h>
-#include <tf2_ros/static_transform_broadcaster.h>
-#include <tf2_ros/transform_broadcaster.h>
-#include <tf2_ros/transform_listener.h>
 
 #include "semantic_edge_vo/NearestNeighborField.h"
 #include "semantic_edge_vo/SemanticEdgeFrame.h"
@@ -37,6 +31,7 @@
 #include "semantic_edge_vo/ros/nodelet_diagnostics.h"
 #include "semantic_edge_vo/ros/nodelet_mapping_link.h"
 #include "semantic_edge_vo/ros/odometry_message.h"
+#include "semantic_edge_vo/ros/odometry_tf.h"
 #include "semantic_edge_vo/config/options_loading.h"
 #include "semantic_edge_vo/ros/ros_parameter_source.h"
 #include "semantic_edge_vo/ros/stamp_order.h"
@@ -78,7 +73,7 @@ class TrackingNodelet : public nodelet::Nodelet {
     diagnostics_ = std::make_unique<NodeletDiagnostics>(node, getName());
     rejections_ = std::make_unique<InputRejections>(getName(), [this](const std::string&) { diagnostics_->dropped(); });
     odometry_messages_ = std::make_unique<OdometryMessageBuilder>(tf_.frames, tf_.max_twist_gap);
-    tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
+    odometry_tf_ = std::make_unique<OdometryTf>(tf_);
     if (tf_.publish_tf && !options_.road.enabled())
       NODELET_INFO_STREAM("publishing " << tf_.frames.odom_frame << " -> " << tf_.frames.base_frame
                                         << " in the odometry's arbitrary monocular scale (set camera_height for metres, "
@@ -178,10 +173,10 @@ class TrackingNodelet : public nodelet::Nodelet {
       };
       OdometryOptions options = options_;
       options.road.road_classes = roadClassBits(frame->class_names);  // the intake's table: Canny's has no road
-      resolveMounting(cameraFrameOf(frame->header));
-      if (options.road.enabled() && mounting_.from_tf) {  // the mounting from tf, not the parameters
-        options.road.setMounting(mounting_.T_base_cam.linear());
-        NODELET_INFO_STREAM("camera mounting against the road from tf (" << tf_.frames.base_frame << " -> " << mounting_frame_
+      const CameraMounting& mounting = odometry_tf_->resolve(odometry_tf_->cameraFrameOf(frame->header.frame_id));
+      if (options.road.enabled() && mounting.from_tf) {  // the mounting from tf, not the parameters
+        options.road.setMounting(mounting.T_base_cam.linear());
+        NODELET_INFO_STREAM("camera mounting against the road from tf (" << tf_.frames.base_frame << " -> " << odometry_tf_->cameraFrame()
                                                                          << "): pitch " << options.road.pitch_deg << " deg, roll "
                                                                          << options.road.roll_deg << " deg");
       }
@@ -233,11 +228,9 @@ class TrackingNodelet : public nodelet::Nodelet {
     publishStatus(*header, recent->second.class_map_age, &pose);
     if (!pose.trusted) return;  // never publish a pose that is not trusted
 
-    const Eigen::Isometry3d& T_base_cam = mounting_.T_base_cam;
-    if (tf_.publish_tf && !mounting_.from_tf && tf_.publish_default_camera_tf && mounting_frame_ != announced_camera_frame_)
-      publishDefaultCameraTf(stamp);
+    const Eigen::Isometry3d& T_base_cam = odometry_tf_->mounting().T_base_cam;
     const Eigen::Isometry3d T_odom_base = baseInOdom(pose.T_world_cam, T_base_cam);
-    if (tf_.publish_tf) publishOdomTf(stamp, T_odom_base);
+    odometry_tf_->publish(stamp, T_odom_base);
     const Matrix6d covariance = baseCovariance(pose.tracking.covariance, T_base_cam);
     odometry_publisher_.publish(
         nav_msgs::OdometryConstPtr(odometry_messages_->build(stamp, T_odom_base, covariance, pose.scale != ScaleState::kArbitrary)));
@@ -245,7 +238,7 @@ class TrackingNodelet : public nodelet::Nodelet {
     auto tracked = boost::make_shared<TrackedFrame>();
     tracked->header.stamp = stamp;
     tracked->header.frame_id = "world";
-    tracked->camera_frame_id = mounting_frame_;
+    tracked->camera_frame_id = odometry_tf_->cameraFrame();
     tracked->pose_world_camera = toPoseMsg(pose.T_world_cam);
     tracked->pose_base_camera = toPoseMsg(T_base_cam);
     tracked->pose_trusted = true;
@@ -319,59 +312,6 @@ class TrackingNodelet : public nodelet::Nodelet {
     odometry_->tune(*tuning);
   }
 
-  /// The camera frame of a frame: the configured one, else the image's.
-  std::string cameraFrameOf(const std_msgs::Header& header) const {
-    return tf_.camera_frame.empty() ? header.frame_id : tf_.camera_frame;
-  }
-
-  /// The camera's mounting for a new odometry: from tf (the first frame waits for it up to
-  /// extrinsic_wait, later ones do not), else the optical default; what was assumed is said once.
-  void resolveMounting(const std::string& camera_frame) {
-    const double wait = waited_for_extrinsic_ ? 0.0 : tf_.extrinsic_wait;
-    waited_for_extrinsic_ = true;
-    mounting_ = resolveCameraMounting(tf_buffer_, tf_.frames.base_frame, camera_frame, wait);
-    mounting_frame_ = camera_frame;
-    if (!mounting_.assumption.empty() && warned_assumptions_.insert(mounting_.assumption).second)
-      NODELET_WARN_STREAM(mounting_.assumption);
-    else if (mounting_.from_tf)
-      NODELET_INFO_STREAM("camera extrinsic from tf: " << tf_.frames.base_frame << " -> " << camera_frame);
-  }
-
-  /// odom -> base_link, unless base_link already has another parent on tf (two parents break tf).
-  void publishOdomTf(const ros::Time& stamp, const Eigen::Isometry3d& T_odom_base) {
-    const std::string other = otherParentOnTf(tf_buffer_, tf_.frames.base_frame, tf_.frames.odom_frame);
-    if (!other.empty()) {
-      NODELET_WARN_STREAM_THROTTLE(10.0, "not publishing " << tf_.frames.odom_frame << " -> " << tf_.frames.base_frame << ": "
-                                                            << tf_.frames.base_frame << " already has the parent " << other
-                                                            << " on tf (set base_frame to the root of the vehicle's tree, "
-                                                               "or publish_tf:=false); odometry is still published");
-      return;
-    }
-    geometry_msgs::TransformStamped transform = tf2::eigenToTransform(T_odom_base);
-    transform.header.stamp = stamp;
-    transform.header.frame_id = tf_.frames.odom_frame;
-    transform.child_frame_id = tf_.frames.base_frame;
-    tf_broadcaster_.sendTransform(transform);
-  }
-
-  /// Without a base_link -> camera transform on tf, announce the assumed one so rviz can show the
-  /// camera, unless the camera frame has another parent on tf.
-  void publishDefaultCameraTf(const ros::Time& stamp) {
-    announced_camera_frame_ = mounting_frame_;
-    const std::string other = otherParentOnTf(tf_buffer_, mounting_frame_, tf_.frames.base_frame);
-    if (!other.empty()) {
-      NODELET_WARN_STREAM("not publishing the assumed " << tf_.frames.base_frame << " -> " << mounting_frame_ << ": "
-                                                         << mounting_frame_ << " already has the parent " << other << " on tf");
-      return;
-    }
-    geometry_msgs::TransformStamped transform = tf2::eigenToTransform(mounting_.T_base_cam);
-    transform.header.stamp = stamp;
-    transform.header.frame_id = tf_.frames.base_frame;
-    transform.child_frame_id = mounting_frame_;
-    static_broadcaster_.sendTransform(transform);
-    NODELET_INFO_STREAM("publishing the assumed " << tf_.frames.base_frame << " -> " << mounting_frame_ << " as a static transform");
-  }
-
   // Parameters (read in onInit, constant afterwards; options_'s live tuning changes in the frame callback).
   TfOptions tf_;
   bool use_edges_ = true;  ///< false: photometric-only odometry (the ablation's "none")
@@ -381,17 +321,12 @@ class TrackingNodelet : public nodelet::Nodelet {
   std::unique_ptr<NodeletDiagnostics> diagnostics_;
   std::unique_ptr<InputRejections> rejections_;
   std::unique_ptr<OdometryMessageBuilder> odometry_messages_;
-  tf2_ros::Buffer tf_buffer_;
-  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
+  std::unique_ptr<OdometryTf> odometry_tf_;
   MessageTracer tracer_;
   message_filters::Subscriber<SemanticEdgeFrame> frame_subscriber_;
   message_filters::Subscriber<NearestNeighborField> field_subscriber_;
   std::unique_ptr<Sync> sync_;
   ros::Publisher odometry_publisher_, status_publisher_, tracked_publisher_;
-  tf2_ros::TransformBroadcaster tf_broadcaster_;
-  tf2_ros::StaticTransformBroadcaster static_broadcaster_;
-  std::string announced_camera_frame_;
-  std::set<std::string> warned_assumptions_;
   ros::ServiceServer reset_service_, save_service_;
   std::unique_ptr<LiveParameters<TrackingConfig>> live_;
   std::mutex tuning_mutex_;  // guards pending_tuning_ (set by the live parameters, taken by the frame callback)
@@ -402,9 +337,6 @@ class TrackingNodelet : public nodelet::Nodelet {
 
   // Frame callback only (the synchronizer calls it serially).
   PinholeCamera camera_;
-  CameraMounting mounting_;     ///< of the current odometry
-  std::string mounting_frame_;  ///< its camera frame
-  bool waited_for_extrinsic_ = false;
   std::unique_ptr<Odometry> odometry_;
   FieldKind field_kind_ = FieldKind::kAnnf;  ///< of the last frame's field
   StampOrder stamp_order_{0.0};  ///< the intake passes frames in order: any step back is a new pass
