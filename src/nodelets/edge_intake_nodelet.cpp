@@ -295,7 +295,6 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     }
     auto frame = boost::make_shared<SemanticEdgeFrame>();
     frame->header = image.header;
-    frame->header.seq = ++frames_published_;  // consecutive: the stages after count the frames lost on the way
     frame->camera_info = rectify_ ? rectifier_.rectifiedInfo() : *input.info;
     frame->camera_info.header = input.info->header;
     frame->class_names = classes_.names();
@@ -336,6 +335,7 @@ class EdgeIntakeNodelet : public nodelet::Nodelet {
     moveEdgesInto(std::move(edges), frame.get());
 
     if (edge_image_publisher_.getNumSubscribers() > 0) publishEdgeImage(*frame, gray);
+    frame->header.seq = ++frames_published_;  // consecutive: the stages after count the frames lost on the way
     frame_publisher_.publish(SemanticEdgeFrameConstPtr(frame));
     tracer_.published(frame_publisher_, frame.get(), frame->header.stamp);
     diagnostics_->clear("camera_info");
