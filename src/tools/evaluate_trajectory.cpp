@@ -1,6 +1,7 @@
 // Evaluates an estimated camera trajectory against ground truth: ATE (the paper's protocol, Sim(3),
 // SE(3)), RPE, scale-free frame-to-frame errors and the KITTI devkit drift. Prints the Markdown
-// report and writes DIR/evaluation.md, DIR/evaluation.json and DIR/trajectory_top_down.png.
+// report and writes DIR/evaluation.md, DIR/evaluation.json, DIR/trajectory_top_down.png and
+// DIR/scale_along_path.png.
 //   evaluate_trajectory GT EST [options]      (run with --help for the options)
 #include <cstdlib>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include "semantic_edge_vo/ros/bags/bag_trajectory.h"
 #include "semantic_edge_vo/ros/camera_extrinsic.h"
 #include "semantic_edge_vo/eval/trajectory_evaluator.h"
+#include "semantic_edge_vo/eval/line_plot.h"
 #include "semantic_edge_vo/eval/trajectory_plot.h"
 
 namespace sevo = semantic_edge_vo;
@@ -27,7 +29,7 @@ const char* const kUsage = R"(usage: evaluate_trajectory GT EST [options]
   GT, EST            trajectory files: KITTI poses (12 numbers a line, camera-to-world) or TUM
                      (timestamp tx ty tz qx qy qz qw); EST may also be a .bag with nav_msgs/Odometry
   --format F         kitti | tum | auto (default: auto, from the number of columns of each file)
-  --output DIR       where evaluation.md, evaluation.json, trajectory_top_down.png go (default: .)
+  --output DIR       where evaluation.md, evaluation.json, trajectory_top_down.png, scale_along_path.png go (default: .)
   --bag-topic T      odometry topic in a bag EST (default: /odometry)
   --bag-extrinsic E  optical | identity: T_base_cam the odometry ran with; optical (default) is the
                      tracking nodelet's default camera mount, identity when the bag holds camera poses
@@ -39,6 +41,7 @@ const char* const kUsage = R"(usage: evaluate_trajectory GT EST [options]
   --segment-frames N paper ATE: frames per Sim(3)-aligned segment (default 200)
   --rpe-delta N      RPE frame delta (default 1)
   --end-frames N     the scale at the end is measured over the last N poses (default 100)
+  --scale-stretch M  the scale along the path is measured per M metres of true travel (default 20)
   --first-frame N    evaluate the pairs from ground-truth frame N on (default 0: all); e.g. 12 for
                      KITTI 06, whose first 12 ground-truth poses are extrapolated, not measured
   --keyframes FILE   the estimate's keyframes: run_sequence's timing.txt, or one frame number a line;
@@ -83,6 +86,7 @@ std::string parseArguments(int argc, char** argv, Arguments* args) {
     else if (flag == "--segment-frames") error = sevo::parseNumber(flag, value, &args->options.paper_ate.segment_frames);
     else if (flag == "--rpe-delta") error = sevo::parseNumber(flag, value, &args->options.rpe_delta_frames);
     else if (flag == "--end-frames") error = sevo::parseNumber(flag, value, &args->options.end_frames);
+    else if (flag == "--scale-stretch") error = sevo::parseNumber(flag, value, &args->options.scale_stretch_m);
     else if (flag == "--first-frame") {
       error = sevo::parseNumber(flag, value, &args->first_frame);
       if (error.empty() && args->first_frame < 0) error = "--first-frame takes a frame index >= 0 (got '" + value + "')";
@@ -169,6 +173,26 @@ std::string keepFromFirstFrame(const Arguments& args, sevo::PosePairs* pairs, st
   return "";
 }
 
+/// scale_along_path.png: each stretch's scale over the whole path's, at the stretch's middle.
+std::string writeScalePlot(const Arguments& args, const sevo::TrajectoryEvaluation& evaluation) {
+  if (evaluation.scale_along_path.empty() || !(evaluation.path_scale > 0.0)) return "";
+  sevo::PlotSeries series;
+  series.label = "estimate";
+  for (const sevo::ScaleStretch& stretch : evaluation.scale_along_path) {
+    series.x.push_back(0.5 * (stretch.from_m + stretch.to_m));
+    series.y.push_back(stretch.scale / evaluation.path_scale);
+  }
+  sevo::LinePlotOptions plot;
+  plot.title = "Scale along the path (per " + sevo::tickLabel(args.options.scale_stretch_m, 1.0) +
+               " m): " + fs::path(args.est_path).filename().string();
+  plot.x_label = "true distance along the path (m)";
+  plot.y_label = "travel / true travel, over the whole path's";
+  plot.y_from_zero = false;
+  const std::string png = (fs::path(args.output) / "scale_along_path.png").string();
+  if (!cv::imwrite(png, sevo::renderLinePlot({series}, plot))) return png + ": cannot write the plot";
+  return "";
+}
+
 std::string writeOutputs(const Arguments& args, const sevo::EvaluationSources& sources, const sevo::PosePairs& pairs,
                          const sevo::TrajectoryEvaluation& evaluation, const std::string& markdown) {
   std::error_code code;
@@ -189,7 +213,7 @@ std::string writeOutputs(const Arguments& args, const sevo::EvaluationSources& s
   const std::string png = (dir / "trajectory_top_down.png").string();
   if (!cv::imwrite(png, sevo::renderTopDownPlot(sevo::positionsOf(pairs.gt), aligned, plot)))
     return png + ": cannot write the plot";
-  return "";
+  return writeScalePlot(args, evaluation);
 }
 
 }  // namespace
@@ -226,7 +250,7 @@ int main(int argc, char** argv) {
     std::cerr << "evaluate_trajectory: " << error << "\n";
     return 1;
   }
-  std::cout << "\nWrote " << (fs::path(args.output) / "evaluation.md").string() << ", evaluation.json and "
-            << "trajectory_top_down.png\n";
+  std::cout << "\nWrote " << (fs::path(args.output) / "evaluation.md").string() << ", evaluation.json, trajectory_top_down.png"
+            << (evaluation.scale_along_path.empty() ? "" : " and scale_along_path.png") << "\n";
   return 0;
 }

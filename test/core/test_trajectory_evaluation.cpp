@@ -365,6 +365,41 @@ TEST(TrajectoryEvaluation, TheScaleAtTheEndIsTheLastPosesTravel) {
   EXPECT_GT(e.path_scale, 0.98);
 }
 
+TEST(TrajectoryEvaluation, TheScaleAlongThePathShowsWhereItDrifts) {
+  // 1 m a frame for 100 m; the estimate travels 1 m a frame too, but 0.8 m a frame from 40 to 60 m.
+  const Poses gt = straightLine(101, 1.0);
+  Poses est = gt;
+  for (std::size_t i = 1; i < est.size(); ++i) {
+    const double step = i > 40 && i <= 60 ? 0.8 : 1.0;
+    est[i].translation() = est[i - 1].translation() + Eigen::Vector3d(0.0, 0.0, step);
+  }
+  const std::vector<ScaleStretch> stretches = scaleAlongPath(positionsOf(gt), positionsOf(est), 20.0, 10);
+  ASSERT_EQ(stretches.size(), 5u);
+  const double expected[] = {1.0, 1.0, 0.8, 1.0, 1.0};
+  for (std::size_t k = 0; k < stretches.size(); ++k) {
+    EXPECT_EQ(stretches[k].first, 20 * k);
+    EXPECT_EQ(stretches[k].last, 20 * (k + 1));
+    EXPECT_NEAR(stretches[k].from_m, 20.0 * k, 1e-9);
+    EXPECT_NEAR(stretches[k].scale, expected[k], 1e-9) << "stretch " << k;
+  }
+  // A tail shorter than half a stretch joins the one before it: 0-20, 20-40, 40-65 m.
+  const Poses short_gt(gt.begin(), gt.begin() + 66), short_est(est.begin(), est.begin() + 66);
+  const std::vector<ScaleStretch> joined = scaleAlongPath(positionsOf(short_gt), positionsOf(short_est), 20.0, 10);
+  ASSERT_EQ(joined.size(), 3u);
+  EXPECT_EQ(joined.back().first, 40u);
+  EXPECT_EQ(joined.back().last, 65u);
+  EXPECT_NEAR(joined.back().scale, (20 * 0.8 + 5.0) / 25.0, 1e-9);
+  // A standing car: no stretch.
+  EXPECT_TRUE(scaleAlongPath(positionsOf(straightLine(30, 0.0)), positionsOf(straightLine(30, 0.0)), 20.0, 10).empty());
+  // In the reports: the lowest stretch over the whole path's scale, and where it is.
+  const TrajectoryEvaluation e = evaluate(gt, est);
+  EXPECT_NEAR(e.path_scale, 0.96, 1e-9);
+  const std::string markdown = evaluationMarkdown(EvaluationSources(), e, TrajectoryEvaluationOptions());
+  EXPECT_NE(markdown.find("| 5 | 0.8333 | 40-60 m | 1.042 | 0-20 m | 25 |"), std::string::npos) << markdown;
+  const std::string json = evaluationJson(EvaluationSources(), e, TrajectoryEvaluationOptions());
+  EXPECT_NE(json.find("\"lowest_relative\": 0.8333333333"), std::string::npos);
+}
+
 TEST(TrajectoryEvaluation, ConstantScaleErrorOnKitti00And06) {
   // On real roads the displacement of a segment is shorter than its path where the road turns, so
   // |s - 1| * 100 % (plus a frame's step) is an upper bound, nearly reached by the 100 m segments

@@ -145,6 +145,22 @@ double pathLength(const std::vector<Eigen::Vector3d>& positions);
 /// to the last, both measured over steps of `step` pairs (frame-to-frame jitter left out); 0 when
 /// the truth does not move.
 double travelScale(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est, std::size_t first, std::size_t step);
+/// The same from pair `first` to pair `last`.
+double travelScale(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est, std::size_t first, std::size_t last,
+                   std::size_t step);
+
+/// The estimate's local scale along the path: its travel over the true travel (travelScale, steps
+/// of `step` pairs) over each stretch of `stretch_m` metres of true travel, in order; a last stretch
+/// shorter than half of `stretch_m` joins the one before (none when the whole path is that short).
+/// Where a monocular estimate's scale drifts (turns, a restart) shows here; one Sim(3) alignment
+/// averages it away.
+struct ScaleStretch {
+  std::size_t first = 0, last = 0;  ///< pair indices of the stretch's ends
+  double from_m = 0.0, to_m = 0.0;  ///< true distance along the path of its ends, metres
+  double scale = 0.0;               ///< estimated travel over true travel
+};
+std::vector<ScaleStretch> scaleAlongPath(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est,
+                                         double stretch_m, std::size_t step);
 
 /// Distances of the positions from the constant-speed straight line closest to them (least squares
 /// in a + b k, k = each position's frame number), metres: what a motion model without vision scores

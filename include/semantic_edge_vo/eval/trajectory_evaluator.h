@@ -1,6 +1,7 @@
 #pragma once
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "semantic_edge_vo/eval/trajectory_association.h"
 #include "semantic_edge_vo/eval/trajectory_evaluation.h"
@@ -14,6 +15,7 @@ struct TrajectoryEvaluationOptions {
   double min_gt_translation_m = 0.05;  ///< frame-to-frame directions need this much true motion, metres
   double min_keyframe_travel_m = 0.2;  ///< keyframe intervals need this much true travel for their scale, metres
   int end_frames = 100;                ///< the scale at the end is measured over this many last pairs (all when fewer)
+  double scale_stretch_m = 20.0;       ///< the scale along the path is measured over stretches of this much true travel, metres
 
   std::string validate() const;
 };
@@ -38,6 +40,7 @@ struct TrajectoryEvaluation {
   /// The estimate's scale as it is (1: metres; travelScale over steps of 10 pairs): over the whole
   /// path and over the last end_frames pairs.
   double path_scale = 0.0, end_scale = 0.0;
+  std::vector<ScaleStretch> scale_along_path;  ///< stretches of scale_stretch_m (travelScale over steps of 10 pairs)
   KeyframeScaleChanges keyframe_scale;  ///< with the estimate's keyframes
   std::string keyframe_scale_unavailable;
 };

@@ -131,14 +131,48 @@ std::string segmentedAte(const std::vector<Eigen::Vector3d>& gt, const std::vect
 }
 
 double travelScale(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est, std::size_t first, std::size_t step) {
+  return travelScale(gt, est, first, std::min(gt.size(), est.size()), step);
+}
+
+double travelScale(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est, std::size_t first, std::size_t last,
+                   std::size_t step) {
   double true_travel = 0.0, travel = 0.0;
   step = std::max<std::size_t>(step, 1);
-  for (std::size_t i = first; i + 1 < gt.size() && i < est.size(); i += step) {
-    const std::size_t next = std::min(i + step, std::min(gt.size(), est.size()) - 1);
+  const std::size_t end = std::min({last, gt.size() - 1, est.size() - 1});
+  for (std::size_t i = first; i < end && !gt.empty() && !est.empty(); i += step) {
+    const std::size_t next = std::min(i + step, end);
     true_travel += (gt[next] - gt[i]).norm();
     travel += (est[next] - est[i]).norm();
   }
   return true_travel > 0.0 ? travel / true_travel : 0.0;
+}
+
+std::vector<ScaleStretch> scaleAlongPath(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est,
+                                         double stretch_m, std::size_t step) {
+  std::vector<ScaleStretch> stretches;
+  const std::size_t pairs = std::min(gt.size(), est.size());
+  if (pairs < 2 || !(stretch_m > 0.0)) return stretches;
+  ScaleStretch current;
+  double along = 0.0;
+  for (std::size_t i = 1; i < pairs; ++i) {
+    along += (gt[i] - gt[i - 1]).norm();
+    if (along - current.from_m < stretch_m && i + 1 < pairs) continue;
+    current.last = i;
+    current.to_m = along;
+    const bool short_tail = i + 1 == pairs && current.to_m - current.from_m < 0.5 * stretch_m;
+    if (short_tail && stretches.empty()) break;  // too little travel for one stretch
+    if (short_tail) {
+      current.first = stretches.back().first;
+      current.from_m = stretches.back().from_m;
+      stretches.pop_back();
+    }
+    current.scale = travelScale(gt, est, current.first, current.last, step);
+    stretches.push_back(current);
+    current = ScaleStretch();
+    current.first = i;
+    current.from_m = along;
+  }
+  return stretches;
 }
 
 std::string chainedSegmentAte(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est,

@@ -13,6 +13,7 @@ std::string TrajectoryEvaluationOptions::validate() const {
   else if (!(min_gt_translation_m >= 0.0)) out << "min_gt_translation_m must be >= 0 (got " << min_gt_translation_m << ")";
   else if (!(min_keyframe_travel_m > 0.0)) out << "min_keyframe_travel_m must be > 0 (got " << min_keyframe_travel_m << ")";
   else if (end_frames < 2) out << "end_frames must be >= 2 (got " << end_frames << ")";
+  else if (!(scale_stretch_m > 0.0)) out << "scale_stretch_m must be > 0 (got " << scale_stretch_m << ")";
   return out.str();
 }
 
@@ -36,6 +37,7 @@ std::string evaluateTrajectory(const PosePairs& pairs, const TrajectoryEvaluatio
   result.path_scale = travelScale(gt, est, 0, kScaleStep);
   const auto end_frames = static_cast<std::size_t>(options.end_frames);
   result.end_scale = travelScale(gt, est, gt.size() > end_frames ? gt.size() - end_frames : 0, kScaleStep);
+  result.scale_along_path = scaleAlongPath(gt, est, options.scale_stretch_m, kScaleStep);
   const double scale = result.sim3_ate.alignment.scale;
   result.paper_ate_unavailable = segmentedAte(gt, est, options.paper_ate, &result.paper_ate);
   if (result.paper_ate_unavailable.empty())
