@@ -175,10 +175,10 @@ std::string keepFromFirstFrame(const Arguments& args, sevo::PosePairs* pairs, st
 
 /// scale_along_path.png: each stretch's scale over the whole path's, at the stretch's middle.
 std::string writeScalePlot(const Arguments& args, const sevo::TrajectoryEvaluation& evaluation) {
-  if (evaluation.scale_along_path.empty() || !(evaluation.path_scale > 0.0)) return "";
+  if (evaluation.scale_along_path.stretches.empty() || !(evaluation.path_scale > 0.0)) return "";
   sevo::PlotSeries series;
   series.label = "estimate";
-  for (const sevo::ScaleStretch& stretch : evaluation.scale_along_path) {
+  for (const sevo::ScaleStretch& stretch : evaluation.scale_along_path.stretches) {
     series.x.push_back(0.5 * (stretch.from_m + stretch.to_m));
     series.y.push_back(stretch.scale / evaluation.path_scale);
   }
@@ -251,6 +251,6 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::cout << "\nWrote " << (fs::path(args.output) / "evaluation.md").string() << ", evaluation.json, trajectory_top_down.png"
-            << (evaluation.scale_along_path.empty() ? "" : " and scale_along_path.png") << "\n";
+            << (evaluation.scale_along_path.stretches.empty() ? "" : " and scale_along_path.png") << "\n";
   return 0;
 }

@@ -373,7 +373,8 @@ TEST(TrajectoryEvaluation, TheScaleAlongThePathShowsWhereItDrifts) {
     const double step = i > 40 && i <= 60 ? 0.8 : 1.0;
     est[i].translation() = est[i - 1].translation() + Eigen::Vector3d(0.0, 0.0, step);
   }
-  const std::vector<ScaleStretch> stretches = scaleAlongPath(positionsOf(gt), positionsOf(est), 20.0, 10);
+  const ScaleAlongPath along = scaleAlongPath(positionsOf(gt), positionsOf(est), 20.0, 10);
+  const std::vector<ScaleStretch>& stretches = along.stretches;
   ASSERT_EQ(stretches.size(), 5u);
   const double expected[] = {1.0, 1.0, 0.8, 1.0, 1.0};
   for (std::size_t k = 0; k < stretches.size(); ++k) {
@@ -382,15 +383,18 @@ TEST(TrajectoryEvaluation, TheScaleAlongThePathShowsWhereItDrifts) {
     EXPECT_NEAR(stretches[k].from_m, 20.0 * k, 1e-9);
     EXPECT_NEAR(stretches[k].scale, expected[k], 1e-9) << "stretch " << k;
   }
+  EXPECT_EQ(along.lowest, 2u);
+  EXPECT_EQ(along.highest, 0u);
+  EXPECT_NEAR(along.largest_change, 0.25, 1e-9);
   // A tail shorter than half a stretch joins the one before it: 0-20, 20-40, 40-65 m.
   const Poses short_gt(gt.begin(), gt.begin() + 66), short_est(est.begin(), est.begin() + 66);
-  const std::vector<ScaleStretch> joined = scaleAlongPath(positionsOf(short_gt), positionsOf(short_est), 20.0, 10);
+  const std::vector<ScaleStretch> joined = scaleAlongPath(positionsOf(short_gt), positionsOf(short_est), 20.0, 10).stretches;
   ASSERT_EQ(joined.size(), 3u);
   EXPECT_EQ(joined.back().first, 40u);
   EXPECT_EQ(joined.back().last, 65u);
   EXPECT_NEAR(joined.back().scale, (20 * 0.8 + 5.0) / 25.0, 1e-9);
   // A standing car: no stretch.
-  EXPECT_TRUE(scaleAlongPath(positionsOf(straightLine(30, 0.0)), positionsOf(straightLine(30, 0.0)), 20.0, 10).empty());
+  EXPECT_TRUE(scaleAlongPath(positionsOf(straightLine(30, 0.0)), positionsOf(straightLine(30, 0.0)), 20.0, 10).stretches.empty());
   // In the reports: the lowest stretch over the whole path's scale, and where it is.
   const TrajectoryEvaluation e = evaluate(gt, est);
   EXPECT_NEAR(e.path_scale, 0.96, 1e-9);

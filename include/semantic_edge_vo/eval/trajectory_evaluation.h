@@ -128,7 +128,7 @@ std::string frameToFrameErrors(const std::vector<Eigen::Isometry3d>& gt, const s
 /// travelled at least `min_gt_travel_m` (a standing car has no scale).
 struct KeyframeScaleChanges {
   std::size_t intervals = 0;    ///< keyframe intervals whose scale was measured
-  double largest_change = 0.0;  ///< max over consecutive intervals of max(s2/s1, s1/s2) - 1 (0.3: 30 %)
+  double largest_change = 0.0;  ///< max over consecutive intervals of scaleChange (0.3: 30 %)
   std::size_t at_pair = 0;      ///< pair index of the keyframe between the two intervals
 };
 /// @param[in] keyframes pair indices of the keyframes, increasing
@@ -149,6 +149,9 @@ double travelScale(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eig
 double travelScale(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est, std::size_t first, std::size_t last,
                    std::size_t step);
 
+/// How far apart two local scales are: max(a/b, b/a) - 1 (0.3: a 30 % change).
+double scaleChange(double a, double b);
+
 /// The estimate's local scale along the path: its travel over the true travel (travelScale, steps
 /// of `step` pairs) over each stretch of `stretch_m` metres of true travel, in order; a last stretch
 /// shorter than half of `stretch_m` joins the one before (none when the whole path is that short).
@@ -159,8 +162,13 @@ struct ScaleStretch {
   double from_m = 0.0, to_m = 0.0;  ///< true distance along the path of its ends, metres
   double scale = 0.0;               ///< estimated travel over true travel
 };
-std::vector<ScaleStretch> scaleAlongPath(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est,
-                                         double stretch_m, std::size_t step);
+struct ScaleAlongPath {
+  std::vector<ScaleStretch> stretches;
+  std::size_t lowest = 0, highest = 0;  ///< indices of the stretches of the lowest and highest scale
+  double largest_change = 0.0;          ///< the largest scaleChange between neighbouring stretches
+};
+ScaleAlongPath scaleAlongPath(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est, double stretch_m,
+                              std::size_t step);
 
 /// Distances of the positions from the constant-speed straight line closest to them (least squares
 /// in a + b k, k = each position's frame number), metres: what a motion model without vision scores

@@ -1,7 +1,6 @@
 #pragma once
 #include <cstddef>
 #include <string>
-#include <vector>
 
 #include "semantic_edge_vo/eval/trajectory_association.h"
 #include "semantic_edge_vo/eval/trajectory_evaluation.h"
@@ -40,7 +39,7 @@ struct TrajectoryEvaluation {
   /// The estimate's scale as it is (1: metres; travelScale over steps of 10 pairs): over the whole
   /// path and over the last end_frames pairs.
   double path_scale = 0.0, end_scale = 0.0;
-  std::vector<ScaleStretch> scale_along_path;  ///< stretches of scale_stretch_m (travelScale over steps of 10 pairs)
+  ScaleAlongPath scale_along_path;  ///< stretches of scale_stretch_m (travelScale over steps of 10 pairs)
   KeyframeScaleChanges keyframe_scale;  ///< with the estimate's keyframes
   std::string keyframe_scale_unavailable;
 };

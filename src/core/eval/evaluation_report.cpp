@@ -2,7 +2,6 @@
 
 #include "semantic_edge_vo/support/json_text.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -108,32 +107,11 @@ std::string jsonDrift(const TrajectoryEvaluation& e, const KittiDriftOptions& op
                     depth);
 }
 
-/// The lowest and highest local scale over the whole path's, and the largest change between
-/// neighbouring stretches (max(s2/s1, s1/s2) - 1).
-struct ScaleAlongPathSummary {
-  const ScaleStretch* lowest = nullptr;
-  const ScaleStretch* highest = nullptr;
-  double largest_step = 0.0;
-};
-ScaleAlongPathSummary summarizeScaleAlongPath(const TrajectoryEvaluation& e) {
-  ScaleAlongPathSummary summary;
-  const std::vector<ScaleStretch>& stretches = e.scale_along_path;
-  for (std::size_t i = 0; i < stretches.size(); ++i) {
-    if (!(stretches[i].scale > 0.0)) continue;
-    if (!summary.lowest || stretches[i].scale < summary.lowest->scale) summary.lowest = &stretches[i];
-    if (!summary.highest || stretches[i].scale > summary.highest->scale) summary.highest = &stretches[i];
-    if (i > 0 && stretches[i - 1].scale > 0.0)
-      summary.largest_step = std::max(summary.largest_step, std::max(stretches[i].scale / stretches[i - 1].scale,
-                                                                      stretches[i - 1].scale / stretches[i].scale) - 1.0);
-  }
-  return summary;
-}
-
 std::string jsonScaleAlongPath(const TrajectoryEvaluation& e, const TrajectoryEvaluationOptions& options, int depth) {
-  const ScaleAlongPathSummary summary = summarizeScaleAlongPath(e);
+  const ScaleAlongPath& along = e.scale_along_path;
   const double path = e.path_scale > 0.0 ? e.path_scale : std::nan("");
   std::vector<std::string> stretches;
-  for (const ScaleStretch& s : e.scale_along_path)
+  for (const ScaleStretch& s : along.stretches)
     stretches.push_back(jsonObject({{"first_pair", jsonCount(s.first)},
                                     {"last_pair", jsonCount(s.last)},
                                     {"from_m", jsonNumber(s.from_m)},
@@ -141,10 +119,11 @@ std::string jsonScaleAlongPath(const TrajectoryEvaluation& e, const TrajectoryEv
                                     {"scale", jsonNumber(s.scale)},
                                     {"relative", jsonNumber(s.scale / path)}},
                                    -1));
+  const bool any = !along.stretches.empty();
   return jsonObject({{"stretch_m", jsonNumber(options.scale_stretch_m)},
-                     {"lowest_relative", summary.lowest ? jsonNumber(summary.lowest->scale / path) : "null"},
-                     {"highest_relative", summary.highest ? jsonNumber(summary.highest->scale / path) : "null"},
-                     {"largest_change_between_neighbours", jsonNumber(summary.largest_step)},
+                     {"lowest_relative", any ? jsonNumber(along.stretches[along.lowest].scale / path) : "null"},
+                     {"highest_relative", any ? jsonNumber(along.stretches[along.highest].scale / path) : "null"},
+                     {"largest_change_between_neighbours", jsonNumber(along.largest_change)},
                      {"stretches", jsonArray(stretches, depth + 1)}},
                     depth);
 }
@@ -242,20 +221,21 @@ void markdownScale(const TrajectoryEvaluation& e, const TrajectoryEvaluationOpti
 }
 
 void markdownScaleAlongPath(const TrajectoryEvaluation& e, const TrajectoryEvaluationOptions& options, std::ostringstream& md) {
-  const ScaleAlongPathSummary summary = summarizeScaleAlongPath(e);
+  const ScaleAlongPath& along = e.scale_along_path;
   md << "## Scale along the path\n\n";
-  if (!summary.lowest || !(e.path_scale > 0.0)) {
+  if (along.stretches.empty() || !(e.path_scale > 0.0)) {
     md << "Not available: the ground truth does not move " << figure(options.scale_stretch_m) << " m.\n\n";
     return;
   }
-  const auto where = [](const ScaleStretch& s) { return figure(s.from_m) + "-" + figure(s.to_m) + " m"; };
+  const auto cells = [&](const ScaleStretch& s) {
+    return figure(s.scale / e.path_scale) + " | " + figure(s.from_m) + "-" + figure(s.to_m) + " m";
+  };
   md << "The estimate's travel over the true travel in each stretch of " << figure(options.scale_stretch_m)
      << " m of true travel, over the same for the whole path (1: the estimate's average scale); drawn in "
         "scale_along_path.png. A monocular scale that drifts (in turns, after a restart) shows here.\n\n"
      << "| stretches | lowest | at | highest | at | largest change between neighbours (%) |\n|---:|---:|---|---:|---|---:|\n| "
-     << e.scale_along_path.size() << " | " << figure(summary.lowest->scale / e.path_scale) << " | " << where(*summary.lowest) << " | "
-     << figure(summary.highest->scale / e.path_scale) << " | " << where(*summary.highest) << " | " << figure(100.0 * summary.largest_step)
-     << " |\n\n";
+     << along.stretches.size() << " | " << cells(along.stretches[along.lowest]) << " | " << cells(along.stretches[along.highest])
+     << " | " << figure(100.0 * along.largest_change) << " |\n\n";
 }
 
 void markdownKeyframeScale(const TrajectoryEvaluation& e, const TrajectoryEvaluationOptions& options, std::ostringstream& md) {

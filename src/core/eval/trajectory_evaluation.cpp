@@ -147,11 +147,14 @@ double travelScale(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eig
   return true_travel > 0.0 ? travel / true_travel : 0.0;
 }
 
-std::vector<ScaleStretch> scaleAlongPath(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est,
-                                         double stretch_m, std::size_t step) {
-  std::vector<ScaleStretch> stretches;
+double scaleChange(double a, double b) { return std::max(a / b, b / a) - 1.0; }
+
+ScaleAlongPath scaleAlongPath(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est, double stretch_m,
+                              std::size_t step) {
+  ScaleAlongPath result;
+  std::vector<ScaleStretch>& stretches = result.stretches;
   const std::size_t pairs = std::min(gt.size(), est.size());
-  if (pairs < 2 || !(stretch_m > 0.0)) return stretches;
+  if (pairs < 2 || !(stretch_m > 0.0)) return result;
   ScaleStretch current;
   double along = 0.0;
   for (std::size_t i = 1; i < pairs; ++i) {
@@ -172,7 +175,13 @@ std::vector<ScaleStretch> scaleAlongPath(const std::vector<Eigen::Vector3d>& gt,
     current.first = i;
     current.from_m = along;
   }
-  return stretches;
+  for (std::size_t k = 0; k < stretches.size(); ++k) {
+    if (stretches[k].scale < stretches[result.lowest].scale) result.lowest = k;
+    if (stretches[k].scale > stretches[result.highest].scale) result.highest = k;
+    if (k > 0 && stretches[k - 1].scale > 0.0 && stretches[k].scale > 0.0)
+      result.largest_change = std::max(result.largest_change, scaleChange(stretches[k].scale, stretches[k - 1].scale));
+  }
+  return result;
 }
 
 std::string chainedSegmentAte(const std::vector<Eigen::Vector3d>& gt, const std::vector<Eigen::Vector3d>& est,
@@ -344,7 +353,7 @@ std::string keyframeScaleChanges(const std::vector<Eigen::Vector3d>& gt, const s
     const double scale = (est[to] - est[from]).norm() / travelled;
     ++changes.intervals;
     if (previous_scale > 0.0 && scale > 0.0) {
-      const double change = std::max(scale / previous_scale, previous_scale / scale) - 1.0;
+      const double change = scaleChange(scale, previous_scale);
       if (change > changes.largest_change) {
         changes.largest_change = change;
         changes.at_pair = from;
