@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include "semantic_edge_vo/backend/map_point.h"
+#include "semantic_edge_vo/backend/road_plane.h"
 #include "semantic_edge_vo/frontend/odometry_frame.h"
 #include "semantic_edge_vo/fields/shared_class_edge_test.h"
 
@@ -27,12 +28,16 @@ struct Keyframe {
   /// Edges of the frame's field near each pixel, for epipolar searches into this keyframe: kept from
   /// when the frame was tracked (null: no field, or the frame was not searched into then).
   std::shared_ptr<const SharedClassEdgeTest> edge_test;
+  /// The road plane under it, measured densely against the frame mapped before it (DenseRoadFitter)
+  /// when it was made, in the map's units; not found: none (no camera height, or no road seen).
+  RoadFit road;
 };
 
 /// The keyframe as part of a map scaled by `scale` about the world point `about`: its position and
-/// its points' depths (and their variances).
+/// its points' depths (and their variances), its road's height.
 inline void scaleAbout(double scale, const Eigen::Vector3d& about, Keyframe* keyframe) {
   keyframe->T_world_cam.translation() = about + scale * (keyframe->T_world_cam.translation() - about);
+  keyframe->road.height *= scale;
   for (MapPoint& point : keyframe->points) {
     point.inverse_depth /= scale;
     point.inverse_depth_variance /= scale * scale;

@@ -125,6 +125,9 @@ class Mapper {
   /// kMinRoadKeyframes of its keyframes whose planes agree (max_height_change), scales the map to
   /// metres about `about` (the median of those planes' heights). Returns the scale applied (1: none).
   double measureMapScale(const Eigen::Vector3d& about);
+  /// With a camera height: the road plane under a new keyframe (at its tracked pose), fitted densely
+  /// against the frame tracked before it.
+  RoadFit measureRoad(const Keyframe& keyframe) const;
 
   OdometryOptions options_;
   PinholeCamera camera_;
@@ -138,6 +141,8 @@ class Mapper {
   int frames_since_keyframe_ = 0;
   int keyframes_left_ = 0;  ///< keyframes that have left the window
   bool scale_measured_ = false;  ///< the map's scale was set from the road (camera height given)
+  std::shared_ptr<const OdometryFrame> previous_frame_;  ///< the frame mapped last, and its pose as tracked
+  Eigen::Isometry3d previous_T_world_cam_ = Eigen::Isometry3d::Identity();
   static constexpr int kMinRoadKeyframes = 3;
   /// The allocator gives its free pages back to the system each time this many more have left it.
   static constexpr int kKeyframesBetweenTrims = 20;

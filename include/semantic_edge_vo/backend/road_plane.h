@@ -10,6 +10,8 @@
 
 namespace semantic_edge_vo {
 
+struct Keyframe;
+
 /// Metric scale from the road: the camera rides `camera_height` above it, so the height of the
 /// road plane fitted to a keyframe's road points measures the map's scale at that keyframe.
 struct RoadScaleOptions {
@@ -68,14 +70,24 @@ class RoadPlaneFinder {
 
   /// Whether a point at this pixel with these classes may lie on the road (before its depth is known).
   bool isEvidence(float u, float v, std::uint32_t class_mask) const;
+  /// Whether a viewing ray (optical frame, any length) meets the road the mounting predicts in the
+  /// lane ahead.
+  bool inLaneAhead(const Eigen::Vector3d& ray) const;
   /// The plane through `points` (optical frame, map units); deterministic.
   RoadFit fit(const std::vector<Eigen::Vector3d>& points) const;
   /// Whether a plane this high (map units) measures a map already in metres (max_height_change).
   bool agreesWithMetres(double height) const;
   /// The plane under a keyframe, from its points with a measured depth that are road evidence.
   RoadFit fitKeyframe(const std::vector<MapPoint>& points) const;
+  /// The plane under a keyframe: from its points where they give one (on real roads the more
+  /// accurate), else its dense fit (Keyframe::road), which is found where the points scatter.
+  RoadFit fitKeyframe(const Keyframe& keyframe) const;
 
  private:
+  /// Where a ray meets the predicted road, in camera heights: ahead of the camera and to either
+  /// side (absolute); false at or above the horizon.
+  bool placeOnRoad(const Eigen::Vector3d& ray, double* ahead, double* lateral) const;
+
   RoadScaleOptions options_;
   PinholeCamera camera_;
 };

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "odometry_detail.h"
+#include "semantic_edge_vo/backend/dense_road_fit.h"
 #include "semantic_edge_vo/common/freed_memory.h"
 #include "semantic_edge_vo/common/robust_statistics.h"
 #include "semantic_edge_vo/common/se3.h"
@@ -44,6 +45,8 @@ void Mapper::startMap(const MappingRequest& request) {
   setActiveKeyframe(keyframe);
   frames_since_keyframe_ = 0;
   scale_measured_ = false;
+  previous_frame_ = request.frame;
+  previous_T_world_cam_ = request.T_world_cam;
 }
 
 MappingOutcome Mapper::map(const MappingRequest& request) {
@@ -81,10 +84,13 @@ bool Mapper::refineWith(const MappingRequest& request, MappingOutcome* outcome) 
   // A frame tracked against an older keyframe (parallel mapping made this one meanwhile) measures
   // the new keyframe's depths too (they have a single observation so far), but its flow and points
   // in view were another keyframe's: the decision waits for the frames tracked against this one.
+  const Eigen::Isometry3d T_world_frame = outcome->T_world_cam;  // as tracked (a keyframe's moves in the window)
   if (tracked_against_active && !request.waited_for_initialization) {
     if (frame.has_field && frame.classes_known) class_reliability_.observe(*active_, T_cam_kf, frame.field);
     if (wantsKeyframe(request)) makeKeyframe(request, outcome->T_world_cam, std::move(frame_edges), outcome);
   }
+  previous_frame_ = request.frame;
+  previous_T_world_cam_ = T_world_frame;
   return true;
 }
 
@@ -155,6 +161,7 @@ void Mapper::makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d
   // left-right depth gradient that makes the next yaw error).
   keyframe->points.clear();
   keyframe->edge_test = std::move(frame_edges);
+  keyframe->road = measureRoad(*keyframe);
   keyframe->measured_motion =
       keyframe_motion_.measure(request.frame->index, (active_->T_world_cam.inverse() * keyframe->T_world_cam).linear());
   reanchor(keyframe->measured_motion, options_.keyframe_motion, active_->T_world_cam, &keyframe->T_world_cam);
@@ -193,12 +200,36 @@ void Mapper::takeCandidates(Keyframe* keyframe) const {
     if (point.isEdge()) point.field_layers = class_reliability_.fieldLayers(point.class_mask, all_edges_layer);
 }
 
+RoadFit Mapper::measureRoad(const Keyframe& keyframe) const {
+  // The frame before is the nearest view: over longer baselines the road's texture repeats (lane
+  // markings) and its near part leaves the image.
+  constexpr int kMaxFramesApart = 3;
+  if (!options_.road.enabled() || !previous_frame_ || keyframe.frame->index - previous_frame_->index > kMaxFramesApart) return RoadFit();
+  // The camera rides at one height above the road: the last keyframe's plane is the best guess;
+  // before one, the active keyframe's points that may lie on the road.
+  double guess = 0.0;
+  for (auto it = keyframes_.rbegin(); it != keyframes_.rend() && !(guess > 0.0); ++it)
+    if ((*it)->road.found) guess = (*it)->road.height;
+  if (!(guess > 0.0)) {
+    const RoadPlaneFinder finder(options_.road, camera_);
+    const Eigen::Vector3d down = options_.road.expectedDown();
+    std::vector<double> heights;
+    for (const MapPoint& point : active_->points)
+      if (point.hasDepth() && finder.isEvidence(point.u, point.v, point.class_mask))
+        heights.push_back(down.dot(camera_.backProject(point.u, point.v, 1.0 / point.inverse_depth)));
+    guess = median(heights);
+  }
+  if (!(guess > 0.0)) return RoadFit();
+  const DenseRoadFitter fitter(options_.road, camera_);
+  return fitter.fit(*keyframe.frame->pyramid, *previous_frame_->pyramid, previous_T_world_cam_.inverse() * keyframe.T_world_cam, guess);
+}
+
 double Mapper::measureMapScale(const Eigen::Vector3d& about) {
   if (!options_.road.enabled() || scale_measured_) return 1.0;
   const RoadPlaneFinder finder(options_.road, camera_);
   std::vector<double> heights;
   for (const auto& keyframe : keyframes_) {
-    const RoadFit fit = finder.fitKeyframe(keyframe->points);
+    const RoadFit fit = finder.fitKeyframe(*keyframe);
     if (fit.found) heights.push_back(fit.height);
   }
   // One fit may be a kerb or a verge: the scale is set once kMinRoadKeyframes of them agree.

@@ -8,6 +8,8 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include "semantic_edge_vo/backend/keyframe.h"
+
 namespace semantic_edge_vo {
 namespace {
 
@@ -98,16 +100,27 @@ bool RoadPlaneFinder::isEvidence(float u, float v, std::uint32_t class_mask) con
   // the fit going where road-class edges are few. What stands in the lane is an outlier to the fit.
   const bool lane_kind = road == 0 || class_mask == 0 || (class_mask & road) != 0;
   if (!road_only && !lane_kind) return false;
-  const Eigen::Vector3d down = options_.expectedDown();
   const Eigen::Vector3d ray((u - camera_.cx) / camera_.fx, (v - camera_.cy) / camera_.fy, 1.0);
-  const double below = down.dot(ray);
-  if (below <= 1e-6) return false;  // at or above the horizon
-  const Eigen::Vector3d on_road = ray / below;  // where the ray meets the predicted road, one camera height down
-  const Eigen::Vector3d ahead = (Eigen::Vector3d::UnitZ() - down.z() * down).normalized();
-  const double lateral = std::abs(on_road.dot(ahead.cross(down)));
-  const double distance = on_road.dot(ahead);
-  if (distance < options_.min_ahead || distance > options_.max_ahead) return false;
+  double distance = 0.0, lateral = 0.0;
+  if (!placeOnRoad(ray, &distance, &lateral) || distance < options_.min_ahead || distance > options_.max_ahead) return false;
   return (road_only && lateral <= options_.half_width) || (lane_kind && lateral <= options_.lane_half_width);
+}
+
+bool RoadPlaneFinder::inLaneAhead(const Eigen::Vector3d& ray) const {
+  double distance = 0.0, lateral = 0.0;
+  return placeOnRoad(ray, &distance, &lateral) && distance >= options_.min_ahead && distance <= options_.max_ahead &&
+         lateral <= options_.lane_half_width;
+}
+
+bool RoadPlaneFinder::placeOnRoad(const Eigen::Vector3d& ray, double* ahead, double* lateral) const {
+  const Eigen::Vector3d down = options_.expectedDown();
+  const double below = down.dot(ray);
+  if (below <= 1e-6) return false;  // at or above the horizon (rays of z = 1)
+  const Eigen::Vector3d on_road = ray / below;  // where the ray meets the predicted road, one camera height down
+  const Eigen::Vector3d forward = (Eigen::Vector3d::UnitZ() - down.z() * down).normalized();
+  *lateral = std::abs(on_road.dot(forward.cross(down)));
+  *ahead = on_road.dot(forward);
+  return true;
 }
 
 RoadFit RoadPlaneFinder::fit(const std::vector<Eigen::Vector3d>& points) const {
@@ -165,6 +178,11 @@ RoadFit RoadPlaneFinder::fitKeyframe(const std::vector<MapPoint>& points) const 
     if (point.hasDepth() && isEvidence(point.u, point.v, point.class_mask))
       evidence.push_back(camera_.backProject(point.u, point.v, 1.0 / point.inverse_depth));
   return fit(evidence);
+}
+
+RoadFit RoadPlaneFinder::fitKeyframe(const Keyframe& keyframe) const {
+  RoadFit from_points = fitKeyframe(keyframe.points);
+  return from_points.found ? from_points : keyframe.road;
 }
 
 }  // namespace semantic_edge_vo

@@ -125,7 +125,7 @@ void scaleTowardTheRoad(const RoadScaleOptions& road, const std::deque<std::shar
   const RoadPlaneFinder finder(road, window[first]->frame->pyramid->level(0).camera);
   double measured = 0.0;  // sum of the keyframes' log scale errors
   for (std::size_t k = first; k < window.size(); ++k) {
-    const RoadFit fit = finder.fitKeyframe(window[k]->points);
+    const RoadFit fit = finder.fitKeyframe(*window[k]);
     if (!fit.found || !finder.agreesWithMetres(fit.height)) continue;
     measured += std::log(road.camera_height / fit.height);
     ++result->road_keyframes;
