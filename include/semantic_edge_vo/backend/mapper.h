@@ -113,7 +113,7 @@ class Mapper {
   /// from there. It keeps `frame_edges` for the next keyframe's epipolar search. Refused
   /// (outcome->refused) when the scale disagrees: nothing changed.
   void makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d& T_world_cam,
-                    std::shared_ptr<const SharedClassEdgeTest> frame_edges, MappingOutcome* outcome);
+                    std::shared_ptr<const SharedClassEdgeTest> frame_edges, const RoadFit& road, MappingOutcome* outcome);
   /// The keyframe's points from its frame's candidates, their depths triangulated against the
   /// previous keyframe (KeyframeDepths::triangulate, whose scale it returns; `map_depths` as there).
   double triangulatePoints(Keyframe* keyframe, const Keyframe& previous, std::vector<MapPoint>* map_depths = nullptr) const;
@@ -121,13 +121,13 @@ class Mapper {
   /// class reliability gives its classes.
   void takeCandidates(Keyframe* keyframe) const;
   void setActiveKeyframe(std::shared_ptr<Keyframe> keyframe);
-  /// With a camera height, until a map's scale is measured: when the road is found under
-  /// kMinRoadKeyframes of its keyframes whose planes agree (max_height_change), scales the map to
-  /// metres about `about` (the median of those planes' heights). Returns the scale applied (1: none).
+  /// With a camera height, until a map's scale is measured: when kMinRoadFits of the planes under
+  /// its keyframes and its other frames since it started agree (max_height_change), scales the map
+  /// to metres about `about` (the median of those planes' heights). Returns the scale applied (1: none).
   double measureMapScale(const Eigen::Vector3d& about);
-  /// With a camera height: the road plane under a new keyframe (at its tracked pose), fitted densely
-  /// against the frame tracked before it.
-  RoadFit measureRoad(const Keyframe& keyframe) const;
+  /// With a camera height: the road plane under a frame at its tracked pose, fitted densely against
+  /// the frame mapped before it.
+  RoadFit measureRoad(const OdometryFrame& frame, const Eigen::Isometry3d& T_world_frame) const;
 
   OdometryOptions options_;
   PinholeCamera camera_;
@@ -143,7 +143,9 @@ class Mapper {
   bool scale_measured_ = false;  ///< the map's scale was set from the road (camera height given)
   std::shared_ptr<const OdometryFrame> previous_frame_;  ///< the frame mapped last, and its pose as tracked
   Eigen::Isometry3d previous_T_world_cam_ = Eigen::Isometry3d::Identity();
-  static constexpr int kMinRoadKeyframes = 3;
+  /// Planes measured under frames that did not become keyframes, until the map's scale is set.
+  std::vector<double> frame_road_heights_;
+  static constexpr int kMinRoadFits = 3;
   /// The allocator gives its free pages back to the system each time this many more have left it.
   static constexpr int kKeyframesBetweenTrims = 20;
   std::function<void(MappingOutcome)> on_provisional_;

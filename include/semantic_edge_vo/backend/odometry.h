@@ -112,8 +112,9 @@ class Odometry {
   /// newest waiting frame's pose relative to it at that scale.
   void makeFirstKeyframe(Eigen::Isometry3d* T_last_first);
   /// The poses of the frames that waited for the initialisation: the keyframe's, then each tracked
-  /// against it from its share of `T_last_first`; the odometry tracks on.
-  std::vector<FramePose> posesOfWaitingFrames(const Eigen::Isometry3d& T_last_first, double keyframe_ms);
+  /// against it from its share of `T_last_first`; the odometry tracks on. Where the road sets the
+  /// map's scale meanwhile (a camera height), every one of them is returned in metres.
+  std::vector<FramePose> posesOfWaitingFrames(Eigen::Isometry3d T_last_first, double keyframe_ms);
   /// Hands a request to mapping and waits for its outcome (deterministic mode, the initialisation).
   /// Throws std::runtime_error when mapping failed on it.
   MappingOutcome mapNow(MappingRequest request);

@@ -70,8 +70,8 @@ class RoadPlaneFinder {
 
   /// Whether a point at this pixel with these classes may lie on the road (before its depth is known).
   bool isEvidence(float u, float v, std::uint32_t class_mask) const;
-  /// Whether a viewing ray (optical frame, any length) meets the road the mounting predicts in the
-  /// lane ahead.
+  /// Whether a viewing ray (optical frame, z = 1) meets the road the mounting predicts in the lane
+  /// ahead.
   bool inLaneAhead(const Eigen::Vector3d& ray) const;
   /// The plane through `points` (optical frame, map units); deterministic.
   RoadFit fit(const std::vector<Eigen::Vector3d>& points) const;

@@ -146,6 +146,7 @@ void addNormalPrior(const Eigen::Vector3d& down, double spread, const PlaneModel
 /// Gauss-Newton with step halving at one level, with the normal's prior; returns the last sums.
 Sums solveLevel(const LevelProblem& problem, const Eigen::Vector3d& down, bool free_normal, PlaneModel* model) {
   Sums sums = problem.evaluate(*model, true);
+  // Held normal: the prior a million times as strong.
   const double spread = std::max(1.0, sums.weighted_squares / std::max(1, sums.residuals)) * (free_normal ? 1.0 : 1e6);
   const auto total = [&](const PlaneModel& at, bool normal) {
     Sums result = problem.evaluate(at, normal);

@@ -45,6 +45,7 @@ void Mapper::startMap(const MappingRequest& request) {
   setActiveKeyframe(keyframe);
   frames_since_keyframe_ = 0;
   scale_measured_ = false;
+  frame_road_heights_.clear();
   previous_frame_ = request.frame;
   previous_T_world_cam_ = request.T_world_cam;
 }
@@ -85,12 +86,29 @@ bool Mapper::refineWith(const MappingRequest& request, MappingOutcome* outcome) 
   // the new keyframe's depths too (they have a single observation so far), but its flow and points
   // in view were another keyframe's: the decision waits for the frames tracked against this one.
   const Eigen::Isometry3d T_world_frame = outcome->T_world_cam;  // as tracked (a keyframe's moves in the window)
+  const bool keyframe_wanted = tracked_against_active && !request.waited_for_initialization && wantsKeyframe(request);
+  // Every frame's road until the map's scale is set (its first scale sooner, from the frames that
+  // wait for the initialisation on), then a keyframe's.
+  const RoadFit road = keyframe_wanted || !scale_measured_ ? measureRoad(frame, T_world_frame) : RoadFit();
   if (tracked_against_active && !request.waited_for_initialization) {
     if (frame.has_field && frame.classes_known) class_reliability_.observe(*active_, T_cam_kf, frame.field);
-    if (wantsKeyframe(request)) makeKeyframe(request, outcome->T_world_cam, std::move(frame_edges), outcome);
+    if (keyframe_wanted) makeKeyframe(request, outcome->T_world_cam, std::move(frame_edges), road, outcome);
+  }
+  if (!outcome->keyframe && !outcome->refused && !scale_measured_ && road.found) {
+    frame_road_heights_.push_back(road.height);
+    // The frames that waited for the initialisation have no pose out yet: about the map's first
+    // keyframe (the active one then), the map keeps its origin. Later ones: about the frame, so
+    // odom does not jump.
+    outcome->rescaled_about = (request.waited_for_initialization ? active_->T_world_cam : T_world_frame).translation();
+    outcome->map_rescale = measureMapScale(outcome->rescaled_about);
   }
   previous_frame_ = request.frame;
   previous_T_world_cam_ = T_world_frame;
+  if (outcome->map_rescale != 1.0) {  // the frame's poses, at the map's new scale
+    const Eigen::Vector3d& about = outcome->rescaled_about;
+    previous_T_world_cam_.translation() = about + outcome->map_rescale * (T_world_frame.translation() - about);
+    if (!outcome->keyframe) outcome->T_world_cam = previous_T_world_cam_;
+  }
   return true;
 }
 
@@ -130,7 +148,7 @@ double Mapper::travelParallax(const Eigen::Isometry3d& T_frame_kf) const {
 }
 
 void Mapper::makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d& T_world_cam,
-                          std::shared_ptr<const SharedClassEdgeTest> frame_edges, MappingOutcome* outcome) {
+                          std::shared_ptr<const SharedClassEdgeTest> frame_edges, const RoadFit& road, MappingOutcome* outcome) {
   auto keyframe = std::make_shared<Keyframe>();
   keyframe->T_world_cam = T_world_cam;
   keyframe->frame = request.frame;
@@ -161,7 +179,7 @@ void Mapper::makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d
   // left-right depth gradient that makes the next yaw error).
   keyframe->points.clear();
   keyframe->edge_test = std::move(frame_edges);
-  keyframe->road = measureRoad(*keyframe);
+  keyframe->road = road;
   keyframe->measured_motion =
       keyframe_motion_.measure(request.frame->index, (active_->T_world_cam.inverse() * keyframe->T_world_cam).linear());
   reanchor(keyframe->measured_motion, options_.keyframe_motion, active_->T_world_cam, &keyframe->T_world_cam);
@@ -200,14 +218,14 @@ void Mapper::takeCandidates(Keyframe* keyframe) const {
     if (point.isEdge()) point.field_layers = class_reliability_.fieldLayers(point.class_mask, all_edges_layer);
 }
 
-RoadFit Mapper::measureRoad(const Keyframe& keyframe) const {
+RoadFit Mapper::measureRoad(const OdometryFrame& frame, const Eigen::Isometry3d& T_world_frame) const {
   // The frame before is the nearest view: over longer baselines the road's texture repeats (lane
   // markings) and its near part leaves the image.
   constexpr int kMaxFramesApart = 3;
-  if (!options_.road.enabled() || !previous_frame_ || keyframe.frame->index - previous_frame_->index > kMaxFramesApart) return RoadFit();
-  // The camera rides at one height above the road: the last keyframe's plane is the best guess;
+  if (!options_.road.enabled() || !previous_frame_ || frame.index - previous_frame_->index > kMaxFramesApart) return RoadFit();
+  // The camera rides at one height above the road: the last plane measured is the best guess;
   // before one, the active keyframe's points that may lie on the road.
-  double guess = 0.0;
+  double guess = frame_road_heights_.empty() ? 0.0 : frame_road_heights_.back();
   for (auto it = keyframes_.rbegin(); it != keyframes_.rend() && !(guess > 0.0); ++it)
     if ((*it)->road.found) guess = (*it)->road.height;
   if (!(guess > 0.0)) {
@@ -221,24 +239,25 @@ RoadFit Mapper::measureRoad(const Keyframe& keyframe) const {
   }
   if (!(guess > 0.0)) return RoadFit();
   const DenseRoadFitter fitter(options_.road, camera_);
-  return fitter.fit(*keyframe.frame->pyramid, *previous_frame_->pyramid, previous_T_world_cam_.inverse() * keyframe.T_world_cam, guess);
+  return fitter.fit(*frame.pyramid, *previous_frame_->pyramid, previous_T_world_cam_.inverse() * T_world_frame, guess);
 }
 
 double Mapper::measureMapScale(const Eigen::Vector3d& about) {
   if (!options_.road.enabled() || scale_measured_) return 1.0;
   const RoadPlaneFinder finder(options_.road, camera_);
-  std::vector<double> heights;
+  std::vector<double> heights = frame_road_heights_;
   for (const auto& keyframe : keyframes_) {
     const RoadFit fit = finder.fitKeyframe(*keyframe);
     if (fit.found) heights.push_back(fit.height);
   }
-  // One fit may be a kerb or a verge: the scale is set once kMinRoadKeyframes of them agree.
+  // One fit may be a kerb or a verge: the scale is set once kMinRoadFits of them agree.
   const double middle = median(heights);
   std::vector<double> agreeing;
   for (double height : heights)
     if (std::abs(std::log(height / middle)) <= std::log1p(options_.road.max_height_change)) agreeing.push_back(height);
-  if (static_cast<int>(agreeing.size()) < kMinRoadKeyframes) return 1.0;
+  if (static_cast<int>(agreeing.size()) < kMinRoadFits) return 1.0;
   scale_measured_ = true;
+  frame_road_heights_.clear();
   const double scale = options_.road.camera_height / median(agreeing);
   for (const auto& keyframe : keyframes_) scaleAbout(scale, about, keyframe.get());
   return scale;

@@ -113,9 +113,12 @@ std::vector<FramePose> Odometry::process(const std::shared_ptr<const OdometryFra
 }
 
 void Odometry::noteScale(const MappingOutcome& outcome) {
-  if (!options_.road.enabled() || !outcome.keyframe) return;
-  if (outcome.map_rescale != 1.0) map_scale_measured_ = true;
-  if (!map_scale_measured_) return;  // arbitrary until the map's first road
+  if (!options_.road.enabled()) return;
+  if (outcome.map_rescale != 1.0) {  // the map's first road (under a keyframe, or any frame before one)
+    map_scale_measured_ = true;
+    scale_ = ScaleState::kMeasured;
+  }
+  if (!outcome.keyframe || !map_scale_measured_) return;  // arbitrary until the map's first road
   scale_confidence_ = outcome.window_keyframes > 0 ? static_cast<double>(outcome.road_keyframes) / outcome.window_keyframes : 0.0;
   scale_ = outcome.road_keyframes > 0 ? ScaleState::kMeasured : ScaleState::kHeld;
 }
@@ -355,10 +358,10 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   if (outcome.refused) return untrustedPose(*frame, pose);
   if (outcome.keyframe) {
     pose.keyframe = true;
-    pose.T_world_cam = outcome.T_world_cam;
     pose.window_correction = outcome.window_correction;
     new_windows_.push_back(outcome.window);
   }
+  if (outcome.keyframe || outcome.map_rescale != 1.0) pose.T_world_cam = outcome.T_world_cam;  // moved by the window or rescaled
   remember(pose);
   return pose;
 }

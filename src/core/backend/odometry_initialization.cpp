@@ -10,6 +10,7 @@ namespace semantic_edge_vo {
 
 using odometry_detail::elapsedMs;
 using odometry_detail::gray8;
+using odometry_detail::rescale;
 
 void Odometry::startInitialization(const std::shared_ptr<const OdometryFrame>& frame) {
   const auto start = std::chrono::steady_clock::now();
@@ -86,7 +87,7 @@ void Odometry::makeFirstKeyframe(Eigen::Isometry3d* T_last_first_out) {
   *T_last_first_out = T_last_first;
 }
 
-std::vector<FramePose> Odometry::posesOfWaitingFrames(const Eigen::Isometry3d& T_last_first, double keyframe_ms) {
+std::vector<FramePose> Odometry::posesOfWaitingFrames(Eigen::Isometry3d T_last_first, double keyframe_ms) {
   const std::shared_ptr<const Keyframe> keyframe = keyframe_;  // tracking moves on to its refined copies
   const int keyframe_id = keyframe->id;
   const Eigen::Isometry3d& T_world_first = keyframe->T_world_cam;
@@ -129,6 +130,13 @@ std::vector<FramePose> Odometry::posesOfWaitingFrames(const Eigen::Isometry3d& T
       const MappingOutcome outcome = mapNow(std::move(request));
       pose.mapping_ms = outcome.mapping_ms;
       trackAgainst(outcome.active);
+      // The road set the map's scale: the waiting frames' poses, none out yet, go to metres with it
+      // (about the map's first keyframe, which stays where it is).
+      if (outcome.map_rescale != 1.0) {
+        for (FramePose& before : poses) rescale(outcome.map_rescale, outcome.rescaled_about, &before);
+        pose.T_world_cam = outcome.T_world_cam;
+        T_last_first.translation() *= outcome.map_rescale;  // the next frames' guesses
+      }
     }
     poses.push_back(pose);
     remember(pose);
