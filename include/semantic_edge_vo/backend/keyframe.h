@@ -6,6 +6,7 @@
 
 #include "semantic_edge_vo/backend/map_point.h"
 #include "semantic_edge_vo/backend/road_plane.h"
+#include "semantic_edge_vo/common/se3.h"
 #include "semantic_edge_vo/frontend/odometry_frame.h"
 #include "semantic_edge_vo/fields/shared_class_edge_test.h"
 
@@ -36,7 +37,7 @@ struct Keyframe {
 /// The keyframe as part of a map scaled by `scale` about the world point `about`: its position and
 /// its points' depths (and their variances), its road's height.
 inline void scaleAbout(double scale, const Eigen::Vector3d& about, Keyframe* keyframe) {
-  keyframe->T_world_cam.translation() = about + scale * (keyframe->T_world_cam.translation() - about);
+  scaleAbout(scale, about, &keyframe->T_world_cam);
   keyframe->road.height *= scale;
   for (MapPoint& point : keyframe->points) {
     point.inverse_depth /= scale;

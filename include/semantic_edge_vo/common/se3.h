@@ -12,6 +12,12 @@ inline Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
   return m;
 }
 
+/// The pose as part of a map scaled by `scale` about the point `about`: its position moves, its
+/// orientation stays.
+inline void scaleAbout(double scale, const Eigen::Vector3d& about, Eigen::Isometry3d* pose) {
+  pose->translation() = about + scale * (pose->translation() - about);
+}
+
 /// The same pose with its rotation made exactly orthonormal again (long products drift).
 Eigen::Isometry3d orthonormalized(const Eigen::Isometry3d& pose);
 

@@ -105,8 +105,7 @@ bool Mapper::refineWith(const MappingRequest& request, MappingOutcome* outcome) 
   previous_frame_ = request.frame;
   previous_T_world_cam_ = T_world_frame;
   if (outcome->map_rescale != 1.0) {  // the frame's poses, at the map's new scale
-    const Eigen::Vector3d& about = outcome->rescaled_about;
-    previous_T_world_cam_.translation() = about + outcome->map_rescale * (T_world_frame.translation() - about);
+    scaleAbout(outcome->map_rescale, outcome->rescaled_about, &previous_T_world_cam_);
     if (!outcome->keyframe) outcome->T_world_cam = previous_T_world_cam_;
   }
   return true;

@@ -17,11 +17,6 @@ inline double elapsedMs(std::chrono::steady_clock::time_point since) {
 /// The frame's full-resolution image, 8 bits (KLT, the two-view initialisation).
 cv::Mat gray8(const OdometryFrame& frame);
 
-/// A pose of a map scaled by `scale` about `about` (MappingOutcome::map_rescale).
-inline void rescale(double scale, const Eigen::Vector3d& about, FramePose* pose) {
-  pose->T_world_cam.translation() = about + scale * (pose->T_world_cam.translation() - about);
-}
-
 /// The layers the frame's edges are matched in: a frame without classes, in the all-edges layer.
 inline EdgeLayers edgeLayersOf(const OdometryFrame& frame) { return frame.classes_known ? EdgeLayers::kOwn : EdgeLayers::kAllEdges; }
 

@@ -10,7 +10,6 @@ namespace semantic_edge_vo {
 
 using odometry_detail::elapsedMs;
 using odometry_detail::gray8;
-using odometry_detail::rescale;
 
 void Odometry::startInitialization(const std::shared_ptr<const OdometryFrame>& frame) {
   const auto start = std::chrono::steady_clock::now();
@@ -133,7 +132,7 @@ std::vector<FramePose> Odometry::posesOfWaitingFrames(Eigen::Isometry3d T_last_f
       // The road set the map's scale: the waiting frames' poses, none out yet, go to metres with it
       // (about the map's first keyframe, which stays where it is).
       if (outcome.map_rescale != 1.0) {
-        for (FramePose& before : poses) rescale(outcome.map_rescale, outcome.rescaled_about, &before);
+        for (FramePose& before : poses) scaleAbout(outcome.map_rescale, outcome.rescaled_about, &before.T_world_cam);
         pose.T_world_cam = outcome.T_world_cam;
         T_last_first.translation() *= outcome.map_rescale;  // the next frames' guesses
       }

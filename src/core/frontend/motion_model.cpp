@@ -32,8 +32,8 @@ void MotionModel::correct(const Eigen::Isometry3d& correction) {
 }
 
 void MotionModel::rescale(double scale, const Eigen::Vector3d& about) {
-  T_world_last_.translation() = about + scale * (T_world_last_.translation() - about);
-  T_world_before_.translation() = about + scale * (T_world_before_.translation() - about);
+  scaleAbout(scale, about, &T_world_last_);
+  scaleAbout(scale, about, &T_world_before_);
   for (Vector6d& motion : driving_motions_) motion.head<3>() *= scale;  // pure travel: its log is the translation
 }
 
