@@ -46,11 +46,13 @@ const char* const kUsage = R"(usage: evaluate_trajectory GT EST [options]
                      KITTI 06, whose first 12 ground-truth poses are extrapolated, not measured
   --keyframes FILE   the estimate's keyframes: run_sequence's timing.txt, or one frame number a line;
                      adds the largest change of scale between consecutive keyframes
+  --tracked-motions FILE  run_sequence's tracked_motions.txt: each frame's motion from its keyframe
+                     with the tracker's covariance; adds the covariance's NEES against ground truth
 )";
 
 struct Arguments {
   std::string gt_path, est_path, format = "auto", output = ".", bag_topic = "/odometry", bag_extrinsic = "optical";
-  std::string gt_times, associate = "auto", keyframes;
+  std::string gt_times, associate = "auto", keyframes, tracked_motions;
   double max_time_diff = 0.01, est_time_offset = 0.0;
   int first_frame = 0;
   sevo::TrajectoryEvaluationOptions options;
@@ -79,6 +81,7 @@ std::string parseArguments(int argc, char** argv, Arguments* args) {
     else if (flag == "--bag-extrinsic") args->bag_extrinsic = value, error = oneOf({"optical", "identity"});
     else if (flag == "--gt-times") args->gt_times = value;
     else if (flag == "--keyframes") args->keyframes = value;
+    else if (flag == "--tracked-motions") args->tracked_motions = value;
     else if (flag == "--associate") args->associate = value, error = oneOf({"auto", "index", "stamps"});
     else if (flag == "--max-time-diff") error = sevo::parseNumber(flag, value, &args->max_time_diff);
     else if (flag == "--est-time-offset") error = sevo::parseNumber(flag, value, &args->est_time_offset);
@@ -233,12 +236,13 @@ int main(int argc, char** argv) {
   sevo::EvaluationSources sources;
   sevo::PosePairs pairs;
   sevo::TrajectoryEvaluation evaluation;
-  std::vector<std::size_t> keyframes;
+  sevo::EstimateRecords records;
   error = readInputs(args, &gt, &est, &sources);
-  if (error.empty() && !args.keyframes.empty()) error = sevo::readKeyframeFrames(args.keyframes, &keyframes);
+  if (error.empty() && !args.keyframes.empty()) error = sevo::readKeyframeFrames(args.keyframes, &records.keyframe_frames);
+  if (error.empty() && !args.tracked_motions.empty()) error = sevo::readTrackedMotions(args.tracked_motions, &records.tracked_motions);
   if (error.empty()) error = associate(args, gt, est, &pairs, &sources.association);
   if (error.empty()) error = keepFromFirstFrame(args, &pairs, &sources.association);
-  if (error.empty()) error = sevo::evaluateTrajectory(pairs, args.options, keyframes, &evaluation);
+  if (error.empty()) error = sevo::evaluateTrajectory(pairs, args.options, records, &evaluation);
   if (!error.empty()) {
     std::cerr << "evaluate_trajectory: " << error << "\n";
     return 1;

@@ -20,6 +20,7 @@
 #include "semantic_edge_vo/support/progress_bar.h"
 #include "semantic_edge_vo/common/robust_statistics.h"
 #include "semantic_edge_vo/sequences/sequence_input.h"
+#include "semantic_edge_vo/common/tracked_motions.h"
 #include "semantic_edge_vo/common/trajectory_io.h"
 #include "semantic_edge_vo/ros/bags/bag_sequence.h"
 
@@ -121,7 +122,9 @@ counted in the figures). --config reads a file laid out like config/semantic_edg
 (the nodelets' parameters; a key no option reads is an error); the flags override it; without it
 every option has its default, which the shipped config equals. Writes OUT/poses_kitti.txt
 (one line per input frame, camera-to-world of camera 0, frame 0 at identity), OUT/poses_tum.txt,
-OUT/poses_flags.txt (per pose line: trusted 0 marks a prediction, not an estimate), OUT/timing.txt (per frame and stage, ms), OUT/parameters.txt (every option used) and prints a summary.
+OUT/poses_flags.txt (per pose line: trusted 0 marks a prediction, not an estimate), OUT/timing.txt (per frame and stage, ms), OUT/parameters.txt (every option used),
+OUT/tracked_motions.txt (each trusted frame's motion from its keyframe with the tracker's covariance, as
+published: evaluate_trajectory --tracked-motions checks it against ground truth) and prints a summary.
 On a synthetic sequence with true depths (DIR/depth/) it also checks every keyframe's point depths
 against them (not with --parallel): OUT/keyframe_depths.txt and a summary line.
 --class-map-latency N replays a live segmenter N frames slower than the camera (fused and
@@ -250,7 +253,27 @@ struct RunCounts {
   std::vector<double> totals;  ///< ms per frame: intake + tracking + mapping
 };
 
-/// Writes the poses, timing.txt and parameters.txt into `output`; returns the first write error.
+/// The trusted frames' motions from their keyframes, with the tracker's covariance (a map's first
+/// frame, which defines it, has none).
+std::vector<TrackedMotion> trackedMotionsOf(const std::vector<FramePose>& poses) {
+  std::vector<TrackedMotion> motions;
+  for (const FramePose& pose : poses) {
+    if (!pose.trusted || !pose.tracking.ok || pose.keyframe_frame < 0 || pose.keyframe_frame == pose.index ||
+        pose.tracking.covariance.isZero())
+      continue;
+    TrackedMotion motion;
+    motion.frame = static_cast<std::size_t>(pose.index);
+    motion.keyframe_frame = static_cast<std::size_t>(pose.keyframe_frame);
+    motion.in_metres = pose.scale != ScaleState::kArbitrary;
+    motion.T_cam_kf = pose.tracking.T_cam_kf;
+    motion.covariance = pose.tracking.covariance;
+    motions.push_back(motion);
+  }
+  return motions;
+}
+
+/// Writes the poses, timing.txt, parameters.txt and tracked_motions.txt into `output`; returns the
+/// first write error.
 std::string writeOutputs(const std::string& output, const RunRecord& record, const std::string& parameters, RunCounts* counts) {
   TrajectoryRecord trajectory;
   std::ostringstream timing;
@@ -269,8 +292,9 @@ std::string writeOutputs(const std::string& output, const RunRecord& record, con
     counts->lost += pose.state == OdometryState::kLost;
     counts->untrusted += pose.state == OdometryState::kUntrusted;
   }
-  for (const std::string& written :
-       {trajectory.write(output), writeTextFile(output + "/timing.txt", timing.str()), writeTextFile(output + "/parameters.txt", parameters)})
+  for (const std::string& written : {trajectory.write(output), writeTextFile(output + "/timing.txt", timing.str()),
+                                     writeTextFile(output + "/parameters.txt", parameters),
+                                     writeTrackedMotions(output + "/tracked_motions.txt", trackedMotionsOf(record.poses))})
     if (!written.empty()) return written;
   return "";
 }
@@ -361,7 +385,7 @@ int main(int argc, char** argv) {
   printSummary(frames, record, counts, mapping);
   if (!args.bag.empty()) std::filesystem::remove_all(args.sequence);
   if (depth_report) std::printf("run_sequence: keyframe depths against the sequence's true depths: %s\n", depth_report->summary().c_str());
-  std::printf("run_sequence: wrote %s/poses_kitti.txt, poses_tum.txt, poses_flags.txt, timing.txt, parameters.txt%s\n", args.output.c_str(),
+  std::printf("run_sequence: wrote %s/poses_kitti.txt, poses_tum.txt, poses_flags.txt, timing.txt, parameters.txt, tracked_motions.txt%s\n", args.output.c_str(),
               depth_report ? ", keyframe_depths.txt" : "");
   return 0;
 }

@@ -60,6 +60,19 @@ TEST(PoseUncertainty, AnUnconstrainedDirectionIsUnknownNotInfinite) {
   EXPECT_NEAR(covariance(5, 5), 1e6, 1.0);
 }
 
+TEST(PoseUncertainty, TravelFromTheKeyframeWidensTheTranslationOnly) {
+  const Matrix6d tracked = 1e-6 * Matrix6d::Identity();
+  const Eigen::Vector3d travel(0.0, 0.0, 2.0);  // 2 m ahead
+  const Matrix6d covariance = withTravelUncertainty(tracked, travel, 0.02, 0.01);
+  EXPECT_NEAR(covariance(2, 2), 1e-6 + 0.04 * 0.04 + 0.02 * 0.02, 1e-12);  // along the travel: scale and travel
+  EXPECT_NEAR(covariance(0, 0), 1e-6 + 0.02 * 0.02, 1e-12);                // across it: travel only
+  EXPECT_NEAR(covariance(1, 1), 1e-6 + 0.02 * 0.02, 1e-12);
+  const Eigen::Matrix3d rotation = covariance.bottomRightCorner<3, 3>(), cross = covariance.topRightCorner<3, 3>();
+  EXPECT_TRUE(rotation.isApprox(tracked.bottomRightCorner<3, 3>()));
+  EXPECT_TRUE(cross.isZero());
+  EXPECT_TRUE(withTravelUncertainty(tracked, Eigen::Vector3d::Zero(), 0.02, 0.01).isApprox(tracked));
+}
+
 TEST(PoseUncertainty, BaseCovarianceIsTheSpreadOfBaseLinkUnderTrackingErrors) {
   // Sampled tracking errors exp(xi) * T_cam_kf move base_link by T_odom_base^-1 * T_odom_base':
   // their spread is baseCovariance.

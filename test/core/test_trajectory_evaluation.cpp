@@ -449,7 +449,7 @@ TEST(TrajectoryEvaluation, KeyframeScaleChangeOfAnEstimateThatShrinks) {
   EXPECT_EQ(changes.at_pair, 12u) << "the interval 9-12 at scale 1, then 12-15 at 0.6";
   // Through evaluateTrajectory, with the keyframes given as frame numbers.
   TrajectoryEvaluation evaluation;
-  ASSERT_EQ(evaluateTrajectory(pairsOf(gt, est), TrajectoryEvaluationOptions(), keyframes, &evaluation), "");
+  ASSERT_EQ(evaluateTrajectory(pairsOf(gt, est), TrajectoryEvaluationOptions(), EstimateRecords{keyframes, {}}, &evaluation), "");
   EXPECT_EQ(evaluation.keyframe_scale_unavailable, "");
   EXPECT_NEAR(evaluation.keyframe_scale.largest_change, 1.0 / 0.6 - 1.0, 1e-9);
   // A standing car has no scale: intervals without travel are left out.

@@ -43,6 +43,7 @@ struct FramePose {
   bool recovered = false;   ///< first trusted pose after a loss or a restart
   bool keyframe = false;    ///< the frame became a keyframe
   int keyframe_id = -1;     ///< keyframe it was tracked against
+  int keyframe_frame = -1;  ///< that keyframe's frame index
   TrackingResult tracking;
   /// How far the tracked motion was from the prediction, in the car's usual travel per frame (0:
   /// not compared; see FrameConsistencyOptions); for an untrusted frame, the rejected solution's.

@@ -19,6 +19,13 @@ Matrix6d adjoint(const Eigen::Isometry3d& T);
 /// residuals do not constrain gets a variance of `max_variance`.
 Matrix6d solutionCovariance(const Matrix6d& hessian, double cost, int residuals, double correlated, double max_variance = 1e6);
 
+/// The covariance of a pose tracked `travel` (translation, map units) from its keyframe, with the
+/// uncertainty the tracking problem cannot see, which grows with that travel: errors of the
+/// keyframe's depths and of the map's scale (docs/architecture.md, "Pose covariance and twist").
+/// Adds a sigma of `scale_sigma` times the travel along it and of `travel_sigma` times the travel
+/// along every axis (fractions) to the translation.
+Matrix6d withTravelUncertainty(Matrix6d covariance, const Eigen::Vector3d& travel, double scale_sigma, double travel_sigma);
+
 /// The frame tracker's covariance (of xi in T_cam_kf = exp(xi) * T_cam_kf, camera axes) as that of
 /// base_link's pose in its own axes (zeta in T_odom_base * exp(zeta)), with base_link -> camera
 /// `T_base_cam`.

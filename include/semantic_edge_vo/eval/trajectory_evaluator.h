@@ -2,6 +2,7 @@
 #include <cstddef>
 #include <string>
 
+#include "semantic_edge_vo/eval/covariance_consistency.h"
 #include "semantic_edge_vo/eval/trajectory_association.h"
 #include "semantic_edge_vo/eval/trajectory_evaluation.h"
 
@@ -42,13 +43,19 @@ struct TrajectoryEvaluation {
   ScaleAlongPath scale_along_path;  ///< stretches of scale_stretch_m (travelScale over steps of 10 pairs)
   KeyframeScaleChanges keyframe_scale;  ///< with the estimate's keyframes
   std::string keyframe_scale_unavailable;
+  CovarianceConsistency covariance;  ///< with the estimate's tracked motions
+  std::string covariance_unavailable;
+};
+
+/// What a run recorded beside its poses; each part may be empty (its metrics are then not available).
+struct EstimateRecords {
+  std::vector<std::size_t> keyframe_frames;    ///< ground-truth frame numbers of the estimate's keyframes
+  std::vector<TrackedMotion> tracked_motions;  ///< each frame's motion from its keyframe, with its covariance
 };
 
 /// Computes every metric on the pairs; fails only when the whole-trajectory alignment is impossible
 /// (fewer than 3 pairs, or an estimate that does not move).
-/// @param[in] keyframe_frames ground-truth frame numbers of the estimate's keyframes (empty: the
-///            keyframe scale changes are not available)
-std::string evaluateTrajectory(const PosePairs& pairs, const TrajectoryEvaluationOptions& options,
-                               const std::vector<std::size_t>& keyframe_frames, TrajectoryEvaluation* evaluation);
+std::string evaluateTrajectory(const PosePairs& pairs, const TrajectoryEvaluationOptions& options, const EstimateRecords& records,
+                               TrajectoryEvaluation* evaluation);
 
 }  // namespace semantic_edge_vo

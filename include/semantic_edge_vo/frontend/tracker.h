@@ -48,6 +48,9 @@ struct TrackingResult {
 
   /// Photometric inliers over photometric residuals (level 0).
   double inlierRatio() const { return static_cast<double>(photometric_inliers) / std::max(1, photometric_residuals); }
+  /// The result in its map scaled by `scale` (the road set the map's metres after it was tracked):
+  /// the translation and its variances.
+  void scaleTranslation(double scale);
 };
 
 /// Which layers of a semantic field (SNNF) the keyframe's edge points are matched in.

@@ -320,6 +320,7 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   pose.index = frame->index;
   pose.time = frame->time;
   pose.keyframe_id = keyframe_->id;
+  pose.keyframe_frame = keyframe_->frame ? keyframe_->frame->index : -1;
   pose.tracking = result;
   pose.tracking_ms = tracking_ms;
   if (result.ok && !consistent) return untrustedPose(*frame, pose);
@@ -362,6 +363,7 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
     new_windows_.push_back(outcome.window);
   }
   if (outcome.keyframe || outcome.map_rescale != 1.0) pose.T_world_cam = outcome.T_world_cam;  // moved by the window or rescaled
+  if (outcome.map_rescale != 1.0) pose.tracking.scaleTranslation(outcome.map_rescale);
   remember(pose);
   return pose;
 }

@@ -100,6 +100,7 @@ std::vector<FramePose> Odometry::posesOfWaitingFrames(Eigen::Isometry3d T_last_f
   first.recovered = recovering_;
   first.keyframe = true;
   first.keyframe_id = keyframe_id;
+  first.keyframe_frame = first.index;
   first.tracking_ms = waiting_.front().ms;
   first.mapping_ms = keyframe_ms;
   poses.push_back(first);
@@ -117,6 +118,7 @@ std::vector<FramePose> Odometry::posesOfWaitingFrames(Eigen::Isometry3d T_last_f
     pose.trusted = result.ok;
     pose.state = result.ok ? OdometryState::kTracking : OdometryState::kLost;
     pose.keyframe_id = keyframe_id;
+    pose.keyframe_frame = first.index;
     pose.tracking = result;
     pose.tracking_ms = waiting_[j].ms + elapsedMs(frame_start);
     if (result.ok) {
@@ -132,8 +134,12 @@ std::vector<FramePose> Odometry::posesOfWaitingFrames(Eigen::Isometry3d T_last_f
       // The road set the map's scale: the waiting frames' poses, none out yet, go to metres with it
       // (about the map's first keyframe, which stays where it is).
       if (outcome.map_rescale != 1.0) {
-        for (FramePose& before : poses) scaleAbout(outcome.map_rescale, outcome.rescaled_about, &before.T_world_cam);
+        for (FramePose& before : poses) {
+          scaleAbout(outcome.map_rescale, outcome.rescaled_about, &before.T_world_cam);
+          before.tracking.scaleTranslation(outcome.map_rescale);
+        }
         pose.T_world_cam = outcome.T_world_cam;
+        pose.tracking.scaleTranslation(outcome.map_rescale);
         T_last_first.translation() *= outcome.map_rescale;  // the next frames' guesses
       }
     }

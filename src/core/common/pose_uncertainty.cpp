@@ -23,6 +23,12 @@ Matrix6d solutionCovariance(const Matrix6d& hessian, double cost, int residuals,
   return scale * eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
 }
 
+Matrix6d withTravelUncertainty(Matrix6d covariance, const Eigen::Vector3d& travel, double scale_sigma, double travel_sigma) {
+  covariance.topLeftCorner<3, 3>() += scale_sigma * scale_sigma * travel * travel.transpose() +
+                                      travel_sigma * travel_sigma * travel.squaredNorm() * Eigen::Matrix3d::Identity();
+  return covariance;
+}
+
 Matrix6d baseCovariance(const Matrix6d& tracking, const Eigen::Isometry3d& T_base_cam) {
   // T_world_cam = T_world_kf * T_cam_kf^-1: a perturbation exp(xi) on the left of T_cam_kf is
   // exp(-xi) on the right of T_world_cam, and T_odom_base = T_base_cam * T_world_cam * T_base_cam^-1

@@ -50,6 +50,15 @@ std::string jsonStatistics(const ErrorStatistics& s) {
                     -1);
 }
 
+std::string jsonNeesStatistics(const NeesStatistics& s) {
+  return jsonObject({{"count", jsonCount(s.count)},
+                     {"dof", std::to_string(s.dof)},
+                     {"median", jsonNumber(s.median)},
+                     {"mean", jsonNumber(s.mean)},
+                     {"above_95", jsonNumber(s.above_95)}},
+                    -1);
+}
+
 std::string jsonAvailability(const std::string& unavailable) {
   return unavailable.empty() ? "null" : jsonString(unavailable);
 }
@@ -82,6 +91,18 @@ std::string jsonPaperAte(const TrajectoryEvaluation& e, const AteProtocolOptions
                      {"segment_frames", std::to_string(options.segment_frames)},
                      {"statistics", jsonStatistics(e.paper_ate.error_m)},
                      {"segments", jsonArray(segments, depth + 1)}},
+                    depth);
+}
+
+std::string jsonNees(const TrajectoryEvaluation& e, int depth) {
+  const CovarianceConsistency& c = e.covariance;
+  return jsonObject({{"unavailable", jsonAvailability(e.covariance_unavailable)},
+                     {"in_metres", c.in_metres ? "true" : "false"},
+                     {"translation_scale", jsonNumber(c.translation_scale)},
+                     {"skipped", jsonCount(c.skipped)},
+                     {"pose", jsonNeesStatistics(c.pose)},
+                     {"rotation", jsonNeesStatistics(c.rotation)},
+                     {"translation", jsonNeesStatistics(c.translation)}},
                     depth);
 }
 
@@ -250,6 +271,31 @@ void markdownKeyframeScale(const TrajectoryEvaluation& e, const TrajectoryEvalua
      << figure(100.0 * e.keyframe_scale.largest_change) << " | " << e.keyframe_scale.at_pair << " |\n\n";
 }
 
+void markdownCovariance(const TrajectoryEvaluation& e, std::ostringstream& md) {
+  md << "## Tracking covariance against ground truth (NEES)\n\n";
+  if (!e.covariance_unavailable.empty()) {
+    md << "Not available: " << e.covariance_unavailable << ".\n\n";
+    return;
+  }
+  const CovarianceConsistency& c = e.covariance;
+  md << "Each frame's motion from its keyframe as tracked, against the true one: NEES = xi^T Sigma^-1 xi with xi = "
+        "log(T_cam_kf T_cam_kf_true^-1) and Sigma the tracker's covariance (the one published). A consistent covariance "
+        "gives the chi-square median and 5 % above its 95th percentile; larger: the covariance is too small (overconfident). "
+     << (c.in_metres ? "Motions tracked in metres only."
+                                    : "Estimated translations multiplied by the Sim(3) scale " + figure(c.translation_scale) + ".")
+     << (c.skipped ? " " + std::to_string(c.skipped) + " motions without ground truth skipped." : "") << "\n\n"
+     << "| error | dof | motions | median (consistent) | mean (consistent) | above the 95th percentile (consistent: 5 %) |\n"
+        "|---|---:|---:|---:|---:|---:|\n";
+  const auto row = [&](const char* name, const NeesStatistics& s) {
+    md << "| " << name << " | " << s.dof << " | " << s.count << " | " << figure(s.median) << " (" << figure(s.expected_median) << ") | "
+       << figure(s.mean) << " (" << s.dof << ") | " << figure(100.0 * s.above_95) << " % |\n";
+  };
+  row("pose", c.pose);
+  row("rotation", c.rotation);
+  row("translation", c.translation);
+  md << "\n";
+}
+
 void markdownSegments(const TrajectoryEvaluation& e, std::ostringstream& md) {
   if (!e.paper_ate_unavailable.empty()) return;
   md << "## Paper-protocol segments\n\n| first pair | poses | Sim(3) scale | RMSE (m) |\n|---:|---:|---:|---:|\n";
@@ -277,6 +323,7 @@ std::string evaluationMarkdown(const EvaluationSources& sources, const Trajector
   markdownScale(evaluation, options, md);
   markdownScaleAlongPath(evaluation, options, md);
   markdownKeyframeScale(evaluation, options, md);
+  markdownCovariance(evaluation, md);
   markdownSegments(evaluation, md);
   md << "## Method\n\n"
      << "- ATE: RMSE of the differences of camera positions after aligning the estimate to the ground truth with "
@@ -345,6 +392,7 @@ std::string evaluationJson(const EvaluationSources& sources, const TrajectoryEva
                                      {"largest_change", jsonNumber(evaluation.keyframe_scale.largest_change)},
                                      {"at_pair", jsonCount(evaluation.keyframe_scale.at_pair)}},
                                     1)},
+      {"tracking_nees", jsonNees(evaluation, 1)},
   };
   return jsonObject(fields, 0) + "\n";
 }

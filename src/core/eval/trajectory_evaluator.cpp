@@ -18,7 +18,8 @@ std::string TrajectoryEvaluationOptions::validate() const {
 }
 
 std::string evaluateTrajectory(const PosePairs& pairs, const TrajectoryEvaluationOptions& options,
-                               const std::vector<std::size_t>& keyframe_frames, TrajectoryEvaluation* evaluation) {
+                               const EstimateRecords& records, TrajectoryEvaluation* evaluation) {
+  const std::vector<std::size_t>& keyframe_frames = records.keyframe_frames;
   const std::string options_error = options.validate();
   if (!options_error.empty()) return options_error;
   const std::vector<Eigen::Vector3d> gt = positionsOf(pairs.gt), est = positionsOf(pairs.est);
@@ -55,6 +56,9 @@ std::string evaluateTrajectory(const PosePairs& pairs, const TrajectoryEvaluatio
   result.keyframe_scale_unavailable = keyframe_frames.empty() ? "no keyframes given"
                                                               : keyframeScaleChanges(gt, est, keyframes, options.min_keyframe_travel_m,
                                                                                      &result.keyframe_scale);
+  result.covariance_unavailable = records.tracked_motions.empty()
+                                      ? "no tracked motions given"
+                                      : covarianceConsistency(pairs, records.tracked_motions, scale, &result.covariance);
   *evaluation = std::move(result);
   return "";
 }

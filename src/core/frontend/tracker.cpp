@@ -15,6 +15,15 @@
 namespace semantic_edge_vo {
 namespace {
 
+// The published covariance, calibrated against ground truth (evaluate_trajectory --tracked-motions:
+// KITTI 03 frames 0-499 and a synthetic city drive, in metres; docs/evaluation.md). A point's
+// pattern pixels share its depth and overlap in the image, and the depth's own error moves them all:
+// the Gauss-Newton covariance times 80 gives the rotation's chi-square median NEES. The translation
+// errs further with the travel from the keyframe (the keyframe's depths, the map's scale), by about
+// 1 % of the travel along it and 1 % along every axis.
+constexpr double kCorrelatedResiduals = 80.0;
+constexpr double kScaleSigma = 0.01, kTravelSigma = 0.01;
+
 /// Coarse levels use every n-th point: they only need to find the basin.
 int pointStride(int level) { return level >= 2 ? 1 << (level - 1) : 1; }
 
@@ -229,6 +238,12 @@ double Tracker::optimizeLevel(const TrackedPoints& points, int level, const Imag
   return cost;
 }
 
+void TrackingResult::scaleTranslation(double scale) {
+  T_cam_kf.translation() *= scale;
+  covariance.topRows<3>() *= scale;
+  covariance.leftCols<3>() *= scale;
+}
+
 TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFieldView* field,
                               const std::vector<Eigen::Isometry3d>& guesses, double previous_inlier_ratio, EdgeLayers layers) const {
   if (!keyframe_ || references_.empty()) return TrackingResult();
@@ -248,8 +263,9 @@ TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFi
       optimizeLevel(points, level, frame, field, prior, &attempt->T_cam_kf, &attempt->iterations);
     Normal normal;
     const double cost = evaluate(points, 0, attempt->T_cam_kf, frame, field, prior, &normal, attempt);
-    // A point's pattern pixels share its depth and overlap in the image: one measurement, not kPattern.
-    attempt->covariance = solutionCovariance(normal.H, cost, attempt->photometric_residuals + attempt->edge_residuals, kPattern);
+    attempt->covariance = withTravelUncertainty(
+        solutionCovariance(normal.H, cost, attempt->photometric_residuals + attempt->edge_residuals, kCorrelatedResiduals),
+        attempt->T_cam_kf.translation(), kScaleSigma, kTravelSigma);
     return cost;
   };
   TrackingResult result;
