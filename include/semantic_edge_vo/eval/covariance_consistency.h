@@ -23,10 +23,9 @@ struct NeesStatistics {
 /// and its translation alone (their marginal covariances).
 struct CovarianceConsistency {
   NeesStatistics pose, rotation, translation;
-  /// Multiplies the estimate's translations (and their sigmas) before the comparison: 1 for motions
-  /// tracked in metres (only those are used when there are any), else the whole trajectory's
-  /// Sim(3) scale (monocular units).
-  bool in_metres = false;
+  bool in_metres = false;  ///< only the motions tracked in metres were compared (there were some)
+  /// Multiplies the estimate's translations (and their sigmas) before the comparison: 1 in metres,
+  /// else the whole trajectory's Sim(3) scale (monocular units).
   double translation_scale = 1.0;
   std::size_t skipped = 0;  ///< motions whose frame or keyframe has no ground truth among the pairs
 };
