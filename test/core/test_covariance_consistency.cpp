@@ -137,6 +137,9 @@ TEST(TrackedMotions, WrittenMotionsReadBackAndBadLinesAreNamed) {
   std::ofstream(bad) << "# header\n3 0 1 1 2 3\n";
   EXPECT_NE(readTrackedMotions(bad, &read).find("bad.txt:2:"), std::string::npos);
   EXPECT_EQ(read.size(), written.size());  // unchanged
+  ASSERT_EQ(writeTrackedMotions(path, {}), "");  // a run without a trusted tracked frame
+  ASSERT_EQ(readTrackedMotions(path, &read), "");
+  EXPECT_TRUE(read.empty());
   fs::remove_all(dir);
 }
 

@@ -21,7 +21,7 @@ struct TrackedMotion {
 /// tracked_motions.txt: a '#' header, then one motion a line: frame, keyframe_frame, in_metres (0/1),
 /// T_cam_kf row-major 3x4 (12 numbers), the covariance's upper triangle row by row (21 numbers).
 std::string writeTrackedMotions(const std::string& path, const std::vector<TrackedMotion>& motions);
-/// Empty on success, otherwise "<path>:<line>: what is wrong" (motions unchanged).
+/// Empty on success (a file of no motions too), otherwise "<path>:<line>: what is wrong" (motions unchanged).
 std::string readTrackedMotions(const std::string& path, std::vector<TrackedMotion>* motions);
 
 }  // namespace semantic_edge_vo

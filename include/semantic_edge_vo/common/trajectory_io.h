@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,13 @@ bool parseTrajectoryFormat(const std::string& text, TrajectoryFormat* format);
 
 /// Splits a line into whitespace-separated finite numbers; false with `error` naming the bad token.
 bool parseNumbers(const std::string& line, std::vector<double>* numbers, std::string* error);
+
+/// Called with the numbers of each data line; returns what is wrong with them, or "".
+using RowHandler = std::function<std::string(const std::vector<double>& row)>;
+/// Feeds every data line of `path` (blank and '#' lines skipped; each must have `columns` numbers)
+/// to `handler`; returns "<path>:<line>: what is wrong", or "". A file without data lines is an
+/// error unless `may_be_empty`.
+std::string forEachRow(const std::string& path, std::size_t columns, const RowHandler& handler, bool may_be_empty = false);
 
 // Readers skip blank lines and lines starting with '#' (as evo does), accept any whitespace between
 // numbers and reject anything else. They return an empty string on success, otherwise

@@ -1,6 +1,5 @@
 #include "semantic_edge_vo/common/tracked_motions.h"
 
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -10,10 +9,6 @@ namespace semantic_edge_vo {
 namespace {
 
 constexpr std::size_t kColumns = 3 + 12 + 21;
-
-std::string located(const std::string& path, int line, const std::string& what) {
-  return path + ":" + std::to_string(line) + ": " + what;
-}
 
 bool isWholeNumber(double value) { return value >= 0.0 && value == static_cast<double>(static_cast<std::size_t>(value)); }
 
@@ -36,19 +31,10 @@ std::string writeTrackedMotions(const std::string& path, const std::vector<Track
 }
 
 std::string readTrackedMotions(const std::string& path, std::vector<TrackedMotion>* motions) {
-  std::ifstream file(path);
-  if (!file) return path + ": cannot open for reading";
   std::vector<TrackedMotion> result;
-  std::string line, error;
-  std::vector<double> numbers;
-  for (int line_number = 1; std::getline(file, line); ++line_number) {
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    if (!parseNumbers(line, &numbers, &error)) return located(path, line_number, error);
-    if (numbers.size() != kColumns)
-      return located(path, line_number, std::to_string(numbers.size()) + " numbers, expected " + std::to_string(kColumns));
+  const std::string error = forEachRow(path, kColumns, [&](const std::vector<double>& numbers) {
     if (!isWholeNumber(numbers[0]) || !isWholeNumber(numbers[1]) || (numbers[2] != 0.0 && numbers[2] != 1.0))
-      return located(path, line_number, "frame and keyframe_frame must be frame numbers, in_metres 0 or 1");
+      return std::string("frame and keyframe_frame must be frame numbers, in_metres 0 or 1");
     TrackedMotion motion;
     motion.frame = static_cast<std::size_t>(numbers[0]);
     motion.keyframe_frame = static_cast<std::size_t>(numbers[1]);
@@ -58,11 +44,11 @@ std::string readTrackedMotions(const std::string& path, std::vector<TrackedMotio
     for (int r = 0, k = 15; r < 6; ++r)
       for (int c = r; c < 6; ++c) motion.covariance(r, c) = motion.covariance(c, r) = numbers[static_cast<std::size_t>(k++)];
     const Eigen::Matrix3d R = motion.T_cam_kf.linear();
-    if (!(R.transpose() * R).isIdentity(1e-3) || R.determinant() < 0.0)
-      return located(path, line_number, "T_cam_kf's rotation is not orthonormal");
+    if (!(R.transpose() * R).isIdentity(1e-3) || R.determinant() < 0.0) return std::string("T_cam_kf's rotation is not orthonormal");
     result.push_back(motion);
-  }
-  if (file.bad()) return path + ": read error";
+    return std::string();
+  }, /*may_be_empty=*/true);  // a run without a trusted tracked frame
+  if (!error.empty()) return error;
   *motions = std::move(result);
   return "";
 }

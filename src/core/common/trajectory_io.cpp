@@ -14,9 +14,6 @@ namespace {
 constexpr double kRotationTolerance = 1e-3;    ///< max |R^T R - I| entry of a KITTI rotation block
 constexpr double kQuaternionTolerance = 1e-2;  ///< max |norm - 1| of a TUM quaternion
 
-/// Called with the numbers of each data line; returns what is wrong with them, or "".
-using RowHandler = std::function<std::string(const std::vector<double>& row)>;
-
 std::string located(const std::string& path, int line_number, const std::string& message) {
   return path + ":" + std::to_string(line_number) + ": " + message;
 }
@@ -26,28 +23,6 @@ bool isDataLine(const std::string& line) {
   return first != std::string::npos && line[first] != '#';
 }
 
-/// Feeds every data line of `path` (which must have `columns` numbers) to `handler`.
-std::string forEachRow(const std::string& path, std::size_t columns, const RowHandler& handler) {
-  std::ifstream file(path);
-  if (!file) return path + ": cannot open for reading";
-  std::string line, error;
-  std::vector<double> row;
-  int line_number = 0, rows = 0;
-  while (std::getline(file, line)) {
-    ++line_number;
-    if (!isDataLine(line)) continue;
-    if (!parseNumbers(line, &row, &error)) return located(path, line_number, error);
-    if (row.size() != columns)
-      return located(path, line_number, "expected " + std::to_string(columns) + " numbers, found " +
-                                            std::to_string(row.size()));
-    error = handler(row);
-    if (!error.empty()) return located(path, line_number, error);
-    ++rows;
-  }
-  if (file.bad()) return path + ": read error";
-  if (rows == 0) return path + ": no data lines";
-  return "";
-}
 
 std::string checkIncreasing(const std::vector<double>& stamps, double stamp) {
   if (!stamps.empty() && stamp <= stamps.back()) {
@@ -67,6 +42,28 @@ std::string writeLines(const std::string& path, std::size_t count, const std::fu
 }
 
 }  // namespace
+
+std::string forEachRow(const std::string& path, std::size_t columns, const RowHandler& handler, bool may_be_empty) {
+  std::ifstream file(path);
+  if (!file) return path + ": cannot open for reading";
+  std::string line, error;
+  std::vector<double> row;
+  int line_number = 0, rows = 0;
+  while (std::getline(file, line)) {
+    ++line_number;
+    if (!isDataLine(line)) continue;
+    if (!parseNumbers(line, &row, &error)) return located(path, line_number, error);
+    if (row.size() != columns)
+      return located(path, line_number, "expected " + std::to_string(columns) + " numbers, found " +
+                                            std::to_string(row.size()));
+    error = handler(row);
+    if (!error.empty()) return located(path, line_number, error);
+    ++rows;
+  }
+  if (file.bad()) return path + ": read error";
+  if (rows == 0 && !may_be_empty) return path + ": no data lines";
+  return "";
+}
 
 bool parseNumbers(const std::string& line, std::vector<double>* numbers, std::string* error) {
   numbers->clear();

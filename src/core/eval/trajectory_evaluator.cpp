@@ -57,7 +57,7 @@ std::string evaluateTrajectory(const PosePairs& pairs, const TrajectoryEvaluatio
                                                               : keyframeScaleChanges(gt, est, keyframes, options.min_keyframe_travel_m,
                                                                                      &result.keyframe_scale);
   result.covariance_unavailable = records.tracked_motions.empty()
-                                      ? "no tracked motions given"
+                                      ? "no tracked motions (none given, or none trusted)"
                                       : covarianceConsistency(pairs, records.tracked_motions, scale, &result.covariance);
   *evaluation = std::move(result);
   return "";
