@@ -25,7 +25,7 @@ class SharedClassEdgeTest {
   const NearestNeighborFieldView& field_;
   float radius_;
   int width_ = 0, height_ = 0;
-  std::vector<std::uint32_t> near_layers_;  ///< per pixel: layers with a seed within radius + half a pixel diagonal
+  std::vector<std::uint32_t> near_layers_;  ///< per pixel: layers with a seed whose pixel is within radius + 1 along each axis
 };
 
 }  // namespace semantic_edge_vo

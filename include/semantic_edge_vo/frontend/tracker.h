@@ -120,9 +120,11 @@ class Tracker {
   void addEdges(const std::vector<ReferenceEdge>& edges, int level, const Eigen::Isometry3d& T_cam_kf,
                 const NearestNeighborFieldView& field, std::size_t begin, std::size_t end, bool with_normal,
                 LevelSums* sums) const;
-  /// Levenberg-Marquardt at one level from `T`; returns the final cost.
+  /// Levenberg-Marquardt at one level from `T`; returns the final cost. When asked, also the normal
+  /// equations and `result`'s counts at the final `T`, as evaluate() gives them (no second evaluation).
   double optimizeLevel(const TrackedPoints& points, int level, const ImagePyramid& frame, const NearestNeighborFieldView* field,
-                       const ForwardMotionPrior& prior, Eigen::Isometry3d* T, int* iterations) const;
+                       const ForwardMotionPrior& prior, Eigen::Isometry3d* T, int* iterations, Normal* final_normal = nullptr,
+                       TrackingResult* final_counts = nullptr) const;
   void setReferences();
 
   TrackerOptions options_;

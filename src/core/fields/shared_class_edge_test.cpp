@@ -8,9 +8,6 @@
 namespace semantic_edge_vo {
 namespace {
 
-// A query anywhere within a pixel is at most half its diagonal from the pixel's centre.
-constexpr float kHalfDiagonal = 0.70711f;
-
 /// std::lround of a pixel coordinate (half away from zero), inline: libm's lroundf cost 1 % of a run.
 int roundToPixel(float x) {
   const int whole = static_cast<int>(x);                  // toward zero
@@ -26,38 +23,46 @@ SharedClassEdgeTest::SharedClassEdgeTest(const NearestNeighborFieldView& field, 
   const FieldLevelView& level = field.levels[0];
   width_ = level.width;
   height_ = level.height;
-  near_layers_.assign(static_cast<std::size_t>(width_) * height_, 0u);
-  const float reach = radius_ + kHalfDiagonal, reach2 = reach * reach;
-  const int span = static_cast<int>(std::ceil(reach));
+  if (width_ <= 0 || height_ <= 0) return;
+  // Each layer's seeds as bits on their nearest pixels, then dilated by a square. A query within
+  // `radius_` of a seed lies in a pixel at most radius_ + 1 from the seed's pixel along each axis
+  // (half a pixel of rounding at either end), so the square keeps every "maybe": a superset of the
+  // discs, built in two separable passes instead of one disc per seed.
+  const int reach = static_cast<int>(std::floor(radius_ + 1.0f));
+  std::vector<std::uint32_t> seeds(static_cast<std::size_t>(width_) * height_, 0u);
   const std::size_t cells = static_cast<std::size_t>(level.grid_cols) * level.grid_rows;
   const int layers = std::min(field.num_layers, 32);
-  // Slices of mask rows; each reads the buckets that reach into its rows and writes only its own.
-  forEachSlice([&](int slice) {
+  for (int layer = 0; layer < layers; ++layer) {
+    const std::uint32_t bit = 1u << layer;
+    const std::uint32_t* starts = level.cell_start.data() + static_cast<std::size_t>(layer) * cells;
+    for (std::uint32_t e = starts[0]; e < starts[cells]; ++e) {
+      const std::uint32_t s = level.entry_seed[e];
+      const int x = std::clamp(roundToPixel(level.seed_u[s]), 0, width_ - 1);
+      const int y = std::clamp(roundToPixel(level.seed_v[s]), 0, height_ - 1);
+      seeds[static_cast<std::size_t>(y) * width_ + x] |= bit;
+    }
+  }
+  std::vector<std::uint32_t> rows(seeds.size());
+  forEachSlice([&](int slice) {  // along each row
     const auto [begin, end] = sliceRange(static_cast<std::size_t>(height_), slice);
-    const int row_begin = static_cast<int>(begin), row_end = static_cast<int>(end);
-    if (row_begin >= row_end) return;
-    const int grid_begin = std::max(0, (row_begin - span) / level.cell_size);
-    const int grid_end = std::min(level.grid_rows, (row_end + span) / level.cell_size + 1);
-    for (int layer = 0; layer < layers; ++layer) {
-      const std::uint32_t bit = 1u << layer;
-      const std::uint32_t* starts = level.cell_start.data() + static_cast<std::size_t>(layer) * cells;
-      for (std::uint32_t e = starts[static_cast<std::size_t>(grid_begin) * level.grid_cols];
-           e < starts[static_cast<std::size_t>(grid_end) * level.grid_cols]; ++e) {
-        const std::uint32_t s = level.entry_seed[e];
-        const float u = level.seed_u[s], v = level.seed_v[s];
-        const int cy = roundToPixel(v);
-        for (int y = std::max(row_begin, cy - span); y <= std::min(row_end - 1, cy + span); ++y) {
-          const float dy2 = (y - v) * (y - v);
-          if (dy2 > reach2) continue;  // adding a square cannot bring the sum back under
-          // The disc's chord on this row, one pixel wider on each side for rounding; the test below
-          // decides, as over the whole square.
-          const float half = std::sqrt(reach2 - dy2);
-          const int x_begin = std::max(0, static_cast<int>(std::floor(u - half)) - 1);
-          const int x_end = std::min(width_ - 1, static_cast<int>(std::ceil(u + half)) + 1);
-          std::uint32_t* row = near_layers_.data() + static_cast<std::size_t>(y) * width_;
-          for (int x = x_begin; x <= x_end; ++x)
-            if ((x - u) * (x - u) + dy2 <= reach2) row[x] |= bit;
-        }
+    for (std::size_t y = begin; y < end; ++y) {
+      const std::uint32_t* in = seeds.data() + y * width_;
+      std::uint32_t* out = rows.data() + y * width_;
+      std::copy(in, in + width_, out);
+      for (int d = 1; d <= reach && d < width_; ++d) {  // shifted whole rows: loops the compiler vectorises
+        for (int x = d; x < width_; ++x) out[x] |= in[x - d];
+        for (int x = 0; x + d < width_; ++x) out[x] |= in[x + d];
+      }
+    }
+  });
+  near_layers_.assign(seeds.size(), 0u);
+  forEachSlice([&](int slice) {  // then down each column
+    const auto [begin, end] = sliceRange(static_cast<std::size_t>(height_), slice);
+    for (int y = static_cast<int>(begin); y < static_cast<int>(end); ++y) {
+      std::uint32_t* out = near_layers_.data() + static_cast<std::size_t>(y) * width_;
+      for (int dy = std::max(0, y - reach); dy <= std::min(height_ - 1, y + reach); ++dy) {
+        const std::uint32_t* in = rows.data() + static_cast<std::size_t>(dy) * width_;
+        for (int x = 0; x < width_; ++x) out[x] |= in[x];
       }
     }
   });

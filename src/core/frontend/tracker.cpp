@@ -212,9 +212,11 @@ Tracker::LevelSums& Tracker::LevelSums::operator+=(const LevelSums& other) {
 }
 
 double Tracker::optimizeLevel(const TrackedPoints& points, int level, const ImagePyramid& frame, const NearestNeighborFieldView* field,
-                              const ForwardMotionPrior& prior, Eigen::Isometry3d* T, int* iterations) const {
+                              const ForwardMotionPrior& prior, Eigen::Isometry3d* T, int* iterations, Normal* final_normal,
+                              TrackingResult* final_counts) const {
   Normal normal;
-  double cost = evaluate(points, level, *T, frame, field, prior, &normal, nullptr);
+  TrackingResult counts;  // evaluate()'s counts at *T, kept only when asked
+  double cost = evaluate(points, level, *T, frame, field, prior, &normal, final_counts ? &counts : nullptr);
   double lambda = 1e-3;
   for (int it = 0; it < options_.iterations_per_level; ++it) {
     ++*iterations;
@@ -223,17 +225,30 @@ double Tracker::optimizeLevel(const TrackedPoints& points, int level, const Imag
     const Vector6d step = -damped.ldlt().solve(normal.b);
     const Eigen::Isometry3d candidate = orthonormalized(se3Exp(step) * *T);
     Normal candidate_normal;
-    const double candidate_cost = evaluate(points, level, candidate, frame, field, prior, &candidate_normal, nullptr);
+    TrackingResult candidate_counts;
+    const double candidate_cost =
+        evaluate(points, level, candidate, frame, field, prior, &candidate_normal, final_counts ? &candidate_counts : nullptr);
     if (candidate_cost < cost) {
       *T = candidate;
       cost = candidate_cost;
       normal = candidate_normal;
+      counts = candidate_counts;
       lambda = std::max(lambda * 0.5, 1e-6);
       if (step.norm() < options_.min_step) break;
     } else {
       lambda *= 4.0;
       if (lambda > 1e4) break;
     }
+  }
+  if (final_normal) *final_normal = normal;
+  if (final_counts) {
+    final_counts->points_in_view = counts.points_in_view;
+    final_counts->photometric_residuals = counts.photometric_residuals;
+    final_counts->photometric_inliers = counts.photometric_inliers;
+    final_counts->photometric_rmse = counts.photometric_rmse;
+    final_counts->edge_residuals = counts.edge_residuals;
+    final_counts->edge_inliers = counts.edge_inliers;
+    final_counts->edge_rmse = counts.edge_rmse;
   }
   return cost;
 }
@@ -259,10 +274,14 @@ TrackingResult Tracker::track(const ImagePyramid& frame, const NearestNeighborFi
   const double predicted_travel = (candidates[0].linear().transpose() * candidates[0].translation()).norm();
   const ForwardMotionPrior prior(options_.forward_motion, predicted_travel);
   const auto refine = [&](TrackingResult* attempt, int from_level) {
-    for (int level = from_level; level >= 0; --level)
-      optimizeLevel(points, level, frame, field, prior, &attempt->T_cam_kf, &attempt->iterations);
     Normal normal;
-    const double cost = evaluate(points, 0, attempt->T_cam_kf, frame, field, prior, &normal, attempt);
+    double cost = 0.0;
+    for (int level = from_level; level > 0; --level)
+      optimizeLevel(points, level, frame, field, prior, &attempt->T_cam_kf, &attempt->iterations);
+    if (from_level >= 0)  // level 0 leaves its normal equations and counts at the solution
+      cost = optimizeLevel(points, 0, frame, field, prior, &attempt->T_cam_kf, &attempt->iterations, &normal, attempt);
+    else
+      cost = evaluate(points, 0, attempt->T_cam_kf, frame, field, prior, &normal, attempt);
     attempt->covariance = withTravelUncertainty(
         solutionCovariance(normal.H, cost, attempt->photometric_residuals + attempt->edge_residuals, kCorrelatedResiduals),
         attempt->T_cam_kf.translation(), kScaleSigma, kTravelSigma);
