@@ -29,6 +29,8 @@ class SequenceInput {
   std::string read(std::size_t frame, cv::Mat* gray, ClassEvidence* evidence);
   /// Milliseconds the segmenter took on the last frame (0 without one).
   double lastSegmenterMs() const { return segmenter_ms_; }
+  /// Whether read() runs a network (then it takes both cores itself) rather than reading files.
+  bool segmentsInProcess() const { return segmenter_ != nullptr; }
 
  private:
   KittiSequence sequence_;
