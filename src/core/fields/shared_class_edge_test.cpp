@@ -71,11 +71,15 @@ SharedClassEdgeTest::SharedClassEdgeTest(const NearestNeighborFieldView& field, 
 bool SharedClassEdgeTest::operator()(std::uint32_t class_mask, float x, float y) const {
   const bool semantic = classRestricted();
   const int px = roundToPixel(x), py = roundToPixel(y);
-  if (px >= 0 && py >= 0 && px < width_ && py < height_ && field_.num_layers <= 32) {
-    const std::uint32_t near = near_layers_[static_cast<std::size_t>(py) * width_ + px];
-    if (!(semantic ? near & class_mask : near)) return false;  // no seed of a wanted layer that close
-  }
   const FieldLevelView& level = field_.levels[0];
+  if (px >= 0 && py >= 0 && px < width_ && py < height_ && field_.num_layers <= 32) {
+    // Only the wanted layers with a seed that close can answer, in the order of the loop below.
+    std::uint32_t maybe = near_layers_[static_cast<std::size_t>(py) * width_ + px];
+    if (semantic) maybe &= class_mask;
+    for (; maybe; maybe &= maybe - 1)
+      if (level.anyWithin(__builtin_ctz(maybe), x, y, radius_)) return true;
+    return false;
+  }
   for (int layer = 0; layer < field_.num_layers; ++layer) {
     const bool wanted = !semantic || ((class_mask >> layer) & 1u);
     if (wanted && level.anyWithin(layer, x, y, radius_)) return true;
