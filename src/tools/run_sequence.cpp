@@ -233,7 +233,8 @@ std::string runFrames(const GraphConfig& options, SequenceInput& input, int fram
   HostCpuTimes host_before, host_after;
   const bool host_known = readHostCpuTimes(&host_before);
   const auto first_frame_at = std::chrono::steady_clock::now();
-  std::future<InputFrame> next = readFrame(input, 0);
+  std::future<InputFrame> next;
+  if (frames > 0) next = readFrame(input, 0);
   for (int i = 0; i < frames; ++i) {
     if (args.rate > 0.0)
       std::this_thread::sleep_until(first_frame_at + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
