@@ -82,6 +82,14 @@ class BadInput : public ::testing::Test {
     if (stamp_.isZero()) stamp_ = ros::Time::now();  // the graph lives on from test to test: stamps too
   }
 
+  // The callbacks use this fixture's members: no callback may run once they start to go.
+  void TearDown() override {
+    log_subscriber_.shutdown();
+    status_subscriber_.shutdown();
+    diagnostics_subscriber_.shutdown();
+    spinner_.stop();
+  }
+
   void publish(const Frame& frame) {
     image_publisher_.publish(frame.image);
     info_publisher_.publish(frame.info);
