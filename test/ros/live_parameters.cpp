@@ -52,6 +52,14 @@ class LiveParameters : public ::testing::Test {
     spinner_.start();
   }
 
+  // The callbacks use this fixture's members: no callback may run once they start to go.
+  void TearDown() override {
+    edge_subscriber_.shutdown();
+    field_subscriber_.shutdown();
+    status_subscriber_.shutdown();
+    spinner_.stop();
+  }
+
   /// The tracking statuses of the next `seconds`.
   std::vector<TrackingStatus> statusesFor(double seconds) {
     {

@@ -86,6 +86,12 @@ class SemanticIntake : public ::testing::Test {
     stamp_ = ros::Time::now();
   }
 
+  // The callbacks use this fixture's members: no callback may run once they start to go.
+  void TearDown() override {
+    for (ros::Subscriber& subscriber : subscribers_) subscriber.shutdown();
+    spinner_.stop();
+  }
+
   /// Keeps the latest frame published on `topic` in `*frame` (guarded by mutex_).
   ros::Subscriber latestFrame(const std::string& topic, SemanticEdgeFrameConstPtr* frame) {
     return node_.subscribe<SemanticEdgeFrame>(topic, 5, [this, frame](const SemanticEdgeFrameConstPtr& f) {
