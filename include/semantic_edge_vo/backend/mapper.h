@@ -1,4 +1,5 @@
 #pragma once
+#include <atomic>
 #include <deque>
 #include <functional>
 #include <map>
@@ -30,6 +31,10 @@ struct MappingRequest {
   bool waited_for_initialization = false;
   /// New live parameters (Odometry::tune), taken before this request is mapped.
   std::optional<LiveTuning> tuning;
+  /// Set (by tracking, to true) once tracking waits for this frame's outcome (it asked for a
+  /// keyframe): a window still being solved for an earlier frame then ends at its next iteration,
+  /// as ORB-SLAM aborts its local bundle adjustment when a keyframe arrives. Null: nobody waits.
+  std::shared_ptr<std::atomic<bool>> tracking_waits;
 };
 
 /// The keyframes of the window as they were when a keyframe was made: copies, never changed again.
@@ -92,6 +97,10 @@ class Mapper {
   /// points fall on, with their depths (KeyframeDepths::triangulate's map_depths). Tracking can use it
   /// 100 ms sooner.
   void onProvisionalKeyframe(std::function<void(MappingOutcome)> callback) { on_provisional_ = std::move(callback); }
+  /// Asked (on the mapping thread) after each iteration of the windowed optimisation: true ends it
+  /// there (from its first iteration on), with the last solution the solver accepted. Unset: every
+  /// window runs in full.
+  void stopWindowWhen(std::function<bool()> stop) { stop_window_ = std::move(stop); }
  private:
   void startMap(const MappingRequest& request);
   /// Refines the active keyframe with a tracked frame and makes the frame a keyframe when it should
@@ -149,6 +158,7 @@ class Mapper {
   /// The allocator gives its free pages back to the system each time this many more have left it.
   static constexpr int kKeyframesBetweenTrims = 20;
   std::function<void(MappingOutcome)> on_provisional_;
+  std::function<bool()> stop_window_;
 };
 
 }  // namespace semantic_edge_vo

@@ -33,6 +33,8 @@ class MappingThread : public MappingLink {
   void run();
   /// Hands an outcome over (mutex_ held).
   void handOver(MappingOutcome outcome);
+  /// Whether tracking waits for a request still queued (the window being solved should end).
+  bool trackingWaitsBehind() const;
 
   Mapper mapper_;  ///< used by the mapping thread only
   std::size_t capacity_;

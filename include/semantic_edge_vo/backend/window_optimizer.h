@@ -1,5 +1,6 @@
 #pragma once
 #include <deque>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -65,8 +66,10 @@ struct WindowOptimizerResult {
 class WindowOptimizer {
  public:
   WindowOptimizer(const WindowOptimizerOptions& options, const RoadScaleOptions& road = {}) : options_(options), road_(road) {}
-  /// Optimises the newest keyframes of `window` in place.
-  WindowOptimizerResult optimize(const std::deque<std::shared_ptr<Keyframe>>& window) const;
+  /// Optimises the newest keyframes of `window` in place. When `stop` is given and returns true
+  /// after an iteration (from the first on), the solve ends there with the last solution the solver accepted.
+  WindowOptimizerResult optimize(const std::deque<std::shared_ptr<Keyframe>>& window,
+                                 const std::function<bool()>& stop = nullptr) const;
 
  private:
   WindowOptimizerOptions options_;

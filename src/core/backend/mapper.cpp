@@ -191,7 +191,7 @@ void Mapper::makeKeyframe(const MappingRequest& request, const Eigen::Isometry3d
   outcome->map_rescale = measureMapScale(outcome->rescaled_about);
   if (options_.optimize_window) {
     const auto start = std::chrono::steady_clock::now();
-    const WindowOptimizerResult solved = window_optimizer_.optimize(keyframes_);
+    const WindowOptimizerResult solved = window_optimizer_.optimize(keyframes_, stop_window_);
     outcome->window_ms = elapsedMs(start);
     outcome->window_keyframes = solved.keyframes;
     outcome->road_keyframes = solved.road_keyframes;

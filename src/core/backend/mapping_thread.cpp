@@ -13,6 +13,7 @@ MappingThread::MappingThread(const OdometryOptions& options, const PinholeCamera
     }
     mapped_.notify_all();
   });
+  mapper_.stopWindowWhen([this] { return trackingWaitsBehind(); });
   thread_ = std::thread([this] { run(); });
 }
 
@@ -45,6 +46,12 @@ void MappingThread::post(MappingRequest request) {
     queue_.push_back(std::move(request));
   }
   wake_.notify_one();
+}
+
+bool MappingThread::trackingWaitsBehind() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return std::any_of(queue_.begin(), queue_.end(),
+                     [](const MappingRequest& request) { return request.tracking_waits && request.tracking_waits->load(); });
 }
 
 std::vector<MappingOutcome> MappingThread::takeOutcomes() {

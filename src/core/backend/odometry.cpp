@@ -134,8 +134,12 @@ std::vector<FramePose> Odometry::processFrame(const std::shared_ptr<const Odomet
   // the old one (in a turn, hundreds of px). Tracking waits for it as it waits in deterministic
   // mode, but only until its points are triangulated (the provisional keyframe), not for the window.
   const auto start = std::chrono::steady_clock::now();
-  if (parallel_ && keyframe_asked_by_ >= 0) mapping_->waitForFrame(keyframe_asked_by_);
+  if (parallel_ && keyframe_asked_by_ >= 0) {
+    keyframe_awaited_->store(true);
+    mapping_->waitForFrame(keyframe_asked_by_);
+  }
   keyframe_asked_by_ = -1;
+  keyframe_awaited_.reset();
   collectMapping();
   const double waited_ms = elapsedMs(start);
   FramePose pose = track(frame);
@@ -214,6 +218,7 @@ void Odometry::trackAgainst(std::shared_ptr<const Keyframe> keyframe) {
 void Odometry::restart() {
   relocalizing_ = false;  // a new map was asked for
   keyframe_asked_by_ = -1;
+  keyframe_awaited_.reset();
   if (state_ != OdometryState::kTracking) return;
   state_ = OdometryState::kInitializing;
   recovering_ = true;
@@ -344,7 +349,10 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   request.keyframe_id = keyframe_->id;
   request.tracking = pose.tracking;
   if (parallel_) {
-    if (pose.tracking.mean_flow > options_.keyframe_flow) keyframe_asked_by_ = frame->index;
+    if (pose.tracking.mean_flow > options_.keyframe_flow) {
+      keyframe_asked_by_ = frame->index;
+      keyframe_awaited_ = request.tracking_waits = std::make_shared<std::atomic<bool>>(false);
+    }
     request.tuning = std::exchange(pending_tuning_, std::nullopt);
     mapping_->post(std::move(request));
     remember(pose);

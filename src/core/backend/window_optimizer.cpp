@@ -3,6 +3,7 @@
 #include <numeric>
 #include <sstream>
 
+#include <ceres/iteration_callback.h>
 #include <ceres/loss_function.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
@@ -138,8 +139,22 @@ void scaleTowardTheRoad(const RoadScaleOptions& road, const std::deque<std::shar
   for (std::size_t k = first; k < window.size(); ++k) scaleAbout(scale, about, window[k].get());
 }
 
-/// Solves the window deterministically; true when the solution is usable and no worse than the start.
-bool solve(int max_iterations, ceres::Problem* problem, WindowOptimizerResult* result) {
+/// Ends a solve early when asked to (someone waits for the mapping thread), but not before its first
+/// iteration (Ceres calls back at iteration 0 too, before any step): each window moves its poses.
+class StopWhenAsked : public ceres::IterationCallback {
+ public:
+  explicit StopWhenAsked(const std::function<bool()>& stop) : stop_(stop) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    return summary.iteration >= 1 && stop_() ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const std::function<bool()>& stop_;
+};
+
+/// Solves the window; true when the solution is usable and no worse than the start. Without `stop`
+/// (or while it returns false) the solve is deterministic.
+bool solve(int max_iterations, const std::function<bool()>& stop, ceres::Problem* problem, WindowOptimizerResult* result) {
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_SCHUR;
   solver.max_num_iterations = max_iterations;
@@ -148,6 +163,8 @@ bool solve(int max_iterations, ceres::Problem* problem, WindowOptimizerResult* r
   // evaluates the Jacobians again: 40 % of the solve. The bound is still kept by projection.
   solver.max_num_line_search_step_size_iterations = 0;
   solver.logging_type = ceres::SILENT;
+  StopWhenAsked stop_when_asked(stop);
+  if (stop) solver.callbacks.push_back(&stop_when_asked);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, problem, &summary);
   result->initial_cost = summary.initial_cost;
@@ -172,7 +189,8 @@ factors::ObservationWeights WindowOptimizerOptions::observationWeights() const {
   return {photometric_sigma, photometric_huber, edge_sigma, edge_huber, edge_weight};
 }
 
-WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr<Keyframe>>& window) const {
+WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr<Keyframe>>& window,
+                                                const std::function<bool()>& stop) const {
   WindowOptimizerResult result;
   const std::size_t count = std::min(window.size(), static_cast<std::size_t>(options_.keyframes));
   if (count < 2) return result;
@@ -231,7 +249,7 @@ WindowOptimizerResult WindowOptimizer::optimize(const std::deque<std::shared_ptr
   if (result.photometric_residuals == 0) return result;
   problem.AddResidualBlock(observations.remainderBlock(), nullptr, poses.back().data());  // the newest pose is never held
 
-  result.solved = solve(options_.max_iterations, &problem, &result);
+  result.solved = solve(options_.max_iterations, stop, &problem, &result);
   if (!result.solved) return result;
 
   for (std::size_t k = 1; k < count; ++k) window[first + k]->T_world_cam = factors::fromParameters(poses[k].data());
