@@ -179,10 +179,12 @@ class Odometry {
   ScaleState scale_ = ScaleState::kArbitrary;
   double scale_confidence_ = 0.0;
   bool map_scale_measured_ = false;  ///< the road set a map's scale once: metres since, measured or held
-  /// Parallel mode: the last frame whose flow asked for a new keyframe, until mapping made it (-1: none),
-  /// and its request's MappingRequest::tracking_waits.
-  int keyframe_asked_by_ = -1;
-  std::shared_ptr<std::atomic<bool>> keyframe_awaited_;
+  /// Parallel mode: the last frame whose flow asked for a new keyframe, until mapping made it.
+  struct KeyframeAsked {
+    int frame_index = -1;
+    std::shared_ptr<std::atomic<bool>> tracking_waits;  ///< its request's MappingRequest::tracking_waits
+  };
+  std::optional<KeyframeAsked> keyframe_asked_;
 };
 
 }  // namespace semantic_edge_vo

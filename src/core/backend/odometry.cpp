@@ -134,12 +134,11 @@ std::vector<FramePose> Odometry::processFrame(const std::shared_ptr<const Odomet
   // the old one (in a turn, hundreds of px). Tracking waits for it as it waits in deterministic
   // mode, but only until its points are triangulated (the provisional keyframe), not for the window.
   const auto start = std::chrono::steady_clock::now();
-  if (parallel_ && keyframe_asked_by_ >= 0) {
-    keyframe_awaited_->store(true);
-    mapping_->waitForFrame(keyframe_asked_by_);
+  if (parallel_ && keyframe_asked_) {
+    keyframe_asked_->tracking_waits->store(true);
+    mapping_->waitForFrame(keyframe_asked_->frame_index);
   }
-  keyframe_asked_by_ = -1;
-  keyframe_awaited_.reset();
+  keyframe_asked_.reset();
   collectMapping();
   const double waited_ms = elapsedMs(start);
   FramePose pose = track(frame);
@@ -217,8 +216,7 @@ void Odometry::trackAgainst(std::shared_ptr<const Keyframe> keyframe) {
 
 void Odometry::restart() {
   relocalizing_ = false;  // a new map was asked for
-  keyframe_asked_by_ = -1;
-  keyframe_awaited_.reset();
+  keyframe_asked_.reset();
   if (state_ != OdometryState::kTracking) return;
   state_ = OdometryState::kInitializing;
   recovering_ = true;
@@ -350,8 +348,8 @@ FramePose Odometry::trackedPose(const std::shared_ptr<const OdometryFrame>& fram
   request.tracking = pose.tracking;
   if (parallel_) {
     if (pose.tracking.mean_flow > options_.keyframe_flow) {
-      keyframe_asked_by_ = frame->index;
-      keyframe_awaited_ = request.tracking_waits = std::make_shared<std::atomic<bool>>(false);
+      request.tracking_waits = std::make_shared<std::atomic<bool>>(false);
+      keyframe_asked_ = KeyframeAsked{frame->index, request.tracking_waits};
     }
     request.tuning = std::exchange(pending_tuning_, std::nullopt);
     mapping_->post(std::move(request));
