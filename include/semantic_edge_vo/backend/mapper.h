@@ -112,7 +112,9 @@ class Mapper {
   /// The keyframe of the window with this id; null when it has left the window.
   const Keyframe* keyframeWithId(int id) const;
   std::map<int, Eigen::Isometry3d> keyframePoses() const;
-  bool wantsKeyframe(const MappingRequest& request) const;
+  /// `first_against_active`: the frame is the first tracked against the active keyframe (its
+  /// inlier ratio is the one later frames are held against).
+  bool wantsKeyframe(const MappingRequest& request, bool first_against_active) const;
   /// Median flow of the active keyframe's measured points between where the frame's rotation alone
   /// and its whole motion take them, px: the parallax a keyframe made from the frame would triangulate with.
   double travelParallax(const Eigen::Isometry3d& T_frame_kf) const;
@@ -148,6 +150,9 @@ class Mapper {
   std::shared_ptr<Keyframe> active_;
   int next_keyframe_id_ = 0;
   int frames_since_keyframe_ = 0;
+  /// Photometric inlier ratio of the first frame tracked against the active keyframe: what later
+  /// frames' ratios are held against (keyframe_min_inliers).
+  std::optional<double> first_inlier_ratio_;
   int keyframes_left_ = 0;  ///< keyframes that have left the window
   bool scale_measured_ = false;  ///< the map's scale was set from the road (camera height given)
   std::shared_ptr<const OdometryFrame> previous_frame_;  ///< the frame mapped last, and its pose as tracked

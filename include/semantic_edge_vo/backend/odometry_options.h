@@ -41,6 +41,10 @@ struct OdometryOptions {
   double keyframe_flow = 60.0;         ///< new keyframe when the keyframe points moved this much on average, px
   double keyframe_min_in_view = 0.6;   ///< ... or fewer of them are in view (fraction)
   int keyframe_max_interval = 8;      ///< ... or this many frames passed
+  /// ... or a frame's photometric inlier ratio fell below this fraction of the first frame's tracked
+  /// against the keyframe: the view has changed more than the flow says (fast travel past near
+  /// structure, a truck alongside), and tracking would soon be lost against this keyframe.
+  double keyframe_min_inliers = 0.85;
   /// ... once the camera has travelled: the median flow of the keyframe points that the travel alone
   /// causes (their pixels minus where the rotation alone takes them) is at least this, px. A
   /// keyframe made without parallax measures no depth and would leave tracking without points (a

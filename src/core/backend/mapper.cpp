@@ -82,11 +82,14 @@ bool Mapper::refineWith(const MappingRequest& request, MappingOutcome* outcome) 
   std::shared_ptr<const SharedClassEdgeTest> frame_edges = depths_.refine(active_.get(), frame, T_cam_kf);
   if (keyframe_motion_.enabled()) keyframe_motion_.follow(frame.index, gray8(frame));
   ++frames_since_keyframe_;
+  const bool first_against_active = tracked_against_active && !first_inlier_ratio_;
+  if (first_against_active) first_inlier_ratio_ = request.tracking.inlierRatio();
   // A frame tracked against an older keyframe (parallel mapping made this one meanwhile) measures
   // the new keyframe's depths too (they have a single observation so far), but its flow and points
   // in view were another keyframe's: the decision waits for the frames tracked against this one.
   const Eigen::Isometry3d T_world_frame = outcome->T_world_cam;  // as tracked (a keyframe's moves in the window)
-  const bool keyframe_wanted = tracked_against_active && !request.waited_for_initialization && wantsKeyframe(request);
+  const bool keyframe_wanted =
+      tracked_against_active && !request.waited_for_initialization && wantsKeyframe(request, first_against_active);
   // Every frame's road until the map's scale is set (its first scale sooner, from the frames that
   // wait for the initialisation on), then a keyframe's.
   const RoadFit road = keyframe_wanted || !scale_measured_ ? measureRoad(frame, T_world_frame) : RoadFit();
@@ -125,13 +128,15 @@ std::map<int, Eigen::Isometry3d> Mapper::keyframePoses() const {
   return poses;
 }
 
-bool Mapper::wantsKeyframe(const MappingRequest& request) const {
+bool Mapper::wantsKeyframe(const MappingRequest& request, bool first_against_active) const {
   const TrackingResult& tracking = request.tracking;
   const bool few_in_view = tracking.points_in_view < options_.keyframe_min_in_view * tracking.points;
   // The interval only while the camera travels: standing, a keyframe would measure no depth.
   const bool interval = frames_since_keyframe_ >= options_.keyframe_max_interval &&
                         travelParallax(tracking.T_cam_kf) >= options_.keyframe_min_parallax;
-  return tracking.mean_flow > options_.keyframe_flow || few_in_view || interval;
+  const bool faded = !first_against_active && first_inlier_ratio_ &&
+                     tracking.inlierRatio() < options_.keyframe_min_inliers * *first_inlier_ratio_;
+  return tracking.mean_flow > options_.keyframe_flow || few_in_view || interval || faded;
 }
 
 double Mapper::travelParallax(const Eigen::Isometry3d& T_frame_kf) const {
@@ -264,6 +269,7 @@ double Mapper::measureMapScale(const Eigen::Vector3d& about) {
 
 void Mapper::setActiveKeyframe(std::shared_ptr<Keyframe> keyframe) {
   active_ = std::move(keyframe);
+  first_inlier_ratio_.reset();
   if (keyframe_motion_.enabled()) keyframe_motion_.start(active_->id, active_->frame->index, gray8(*active_->frame));
 }
 

@@ -60,6 +60,7 @@ std::string OdometryOptions::validate() const {
     error = "keyframe_max_interval and window_size must be >= 1, depth_neighbour_radius > 0 px";
   if (error.empty() && mapping_queue < 1) error = "mapping_queue must be >= 1 frame";
   if (error.empty() && !(keyframe_min_parallax >= 0)) error = "keyframe_min_parallax must be >= 0 px";
+  if (error.empty() && !(keyframe_min_inliers >= 0 && keyframe_min_inliers <= 1)) error = "keyframe_min_inliers must be in [0, 1]";
   return error;
 }
 

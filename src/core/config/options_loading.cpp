@@ -51,6 +51,7 @@ std::string loadOdometryOptions(ParameterLoader* loader, OdometryOptions* option
   loader->load("keyframe_flow", &options->keyframe_flow, "px");
   loader->load("keyframe_max_interval", &options->keyframe_max_interval, "frames");
   loader->load("keyframe_min_parallax", &options->keyframe_min_parallax, "px");
+  loader->load("keyframe_min_inliers", &options->keyframe_min_inliers, "fraction");
   loader->load("window_size", &options->window_size, "keyframes");
   loader->load("optimize_window", &options->optimize_window);
   loader->load("mapping_queue", &options->mapping_queue, "frames (parallel mapping)");
